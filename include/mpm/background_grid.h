@@ -1,0 +1,185 @@
+#ifndef mpm_background_grid_h
+#define mpm_background_grid_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/partitioner.h>
+#include <deal.II/base/point.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_cartesian.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /// What a grid face does to the nodal velocity.
+  enum class BoundaryType
+  {
+    free,  ///< nothing
+    fixed, ///< all velocity components zero
+    slip   ///< normal velocity component zero
+  };
+
+  template <int dim>
+  struct GridParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    Point<dim>                        lower_corner;
+    Point<dim>                        upper_corner;
+    std::array<unsigned int, dim>     n_cells;
+    std::array<BoundaryType, 2 * dim> boundary; ///< x-, x+, y-, y+, z-, z+
+  };
+
+
+  /**
+   * The background grid: an axis-aligned box of equal cells. Because it is
+   * Cartesian, the cell holding a point, the point's reference coordinates
+   * and the nodes it touches follow from its position in a few flops; the
+   * tables built here turn those into deal.II cells and nodal-vector
+   * indices without any search.
+   *
+   * Nodal quantities live in LinearAlgebra::distributed::Vector objects
+   * that interleave several components per node (node-major), so one
+   * compress() or update_ghost_values() moves all of them at once.
+   */
+  template <int dim>
+  class BackgroundGrid
+  {
+  public:
+    static constexpr unsigned int nodes_per_cell = 1u << dim;
+    static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
+
+    BackgroundGrid(const GridParameters<dim> &parameters, MPI_Comm comm);
+
+    const Triangulation<dim> &
+    triangulation() const
+    {
+      return *tria;
+    }
+    const Mapping<dim> &
+    mapping() const
+    {
+      return cartesian_mapping;
+    }
+    const DoFHandler<dim> &
+    dof_handler() const
+    {
+      return dofs;
+    }
+    const GridParameters<dim> &
+    parameters() const
+    {
+      return prm;
+    }
+
+    /// Cell size in each direction, and its inverse.
+    const Tensor<1, dim> &
+    cell_size() const
+    {
+      return h;
+    }
+    const Tensor<1, dim> &
+    inverse_cell_size() const
+    {
+      return inv_h;
+    }
+    double
+    min_cell_size() const;
+
+    /// Lexicographic index of the cell that holds @p x, or invalid if @p x
+    /// lies outside the grid. @p reference receives x in the cell's
+    /// reference coordinates [0,1]^dim.
+    unsigned int
+    locate(const Point<dim> &x, Point<dim> &reference) const;
+
+    /// The deal.II cell with lexicographic index @p index.
+    const typename Triangulation<dim>::active_cell_iterator &
+    cell(const unsigned int index) const
+    {
+      return cells[index];
+    }
+
+    /// Lexicographic index of a deal.II cell.
+    unsigned int
+    cartesian_index(
+      const typename Triangulation<dim>::active_cell_iterator &cell) const
+    {
+      return cartesian_index_of_active_cell[cell->active_cell_index()];
+    }
+
+    /// Lexicographic indices of the locally owned cells.
+    const std::vector<unsigned int> &
+    locally_owned_cells() const
+    {
+      return owned_cells;
+    }
+
+    /// Local node indices (into a scalar layout) of the vertices of a
+    /// locally owned cell, in deal.II's lexicographic vertex order.
+    const std::array<unsigned int, nodes_per_cell> &
+    cell_nodes(const unsigned int cartesian_index) const
+    {
+      return local_nodes_of_cell[cartesian_index];
+    }
+
+    /// Partitioner for @p n_components interleaved values per node.
+    std::shared_ptr<const Utilities::MPI::Partitioner>
+    make_partitioner(const unsigned int n_components) const;
+
+    unsigned int
+    n_locally_owned_nodes() const
+    {
+      return n_owned_nodes;
+    }
+
+    /// Owned nodes with boundary constraints and the bit mask of the
+    /// velocity components they hold at zero.
+    const std::vector<std::pair<unsigned int, unsigned int>> &
+    constrained_nodes() const
+    {
+      return node_constraints;
+    }
+
+    /// True if the box [lower, upper] lies inside the grid.
+    bool
+    contains(const Point<dim> &lower, const Point<dim> &upper) const;
+
+  private:
+    void
+    build_cell_tables();
+    void
+    build_node_constraints();
+
+    const GridParameters<dim>           prm;
+    MPI_Comm                            comm;
+    std::unique_ptr<Triangulation<dim>> tria;
+    MappingCartesian<dim>               cartesian_mapping;
+    FE_Q<dim>                           fe;
+    DoFHandler<dim>                     dofs;
+    Tensor<1, dim>                      h;
+    Tensor<1, dim>                      inv_h;
+
+    std::shared_ptr<const Utilities::MPI::Partitioner> scalar_partitioner;
+    unsigned int                                       n_owned_nodes;
+
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
+    std::vector<unsigned int> cartesian_index_of_active_cell;
+    std::vector<unsigned int> owned_cells;
+    std::vector<std::array<unsigned int, nodes_per_cell>> local_nodes_of_cell;
+    std::vector<std::pair<unsigned int, unsigned int>>    node_constraints;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,114 @@
+#ifndef mpm_field_layout_h
+#define mpm_field_layout_h
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * Which properties each material point of this scene stores, and at which
+   * offset of deal.II's per-particle property array. Assembled once from
+   * what the scene uses, so that a scene carries no field it does not need:
+   * the deformation gradient only if a material asks for it, the initial
+   * position only if displacement is written or checked, material state
+   * only for materials that have some.
+   */
+  struct FieldLayout
+  {
+    static constexpr unsigned int absent = static_cast<unsigned int>(-1);
+
+    unsigned int mass                 = absent; ///< 1
+    unsigned int volume               = absent; ///< 1, current volume
+    unsigned int velocity             = absent; ///< dim
+    unsigned int stress               = absent; ///< dim(dim+1)/2, Cauchy
+    unsigned int velocity_gradient    = absent; ///< dim*dim
+    unsigned int body                 = absent; ///< 1, body index
+    unsigned int deformation_gradient = absent; ///< dim*dim, optional
+    unsigned int initial_position     = absent; ///< dim, optional
+    unsigned int state                = absent; ///< material state, optional
+    unsigned int n_state              = 0;
+    unsigned int n_properties         = 0;
+
+    /// Reserve @p n consecutive slots and return the first.
+    unsigned int
+    add(const unsigned int n)
+    {
+      const unsigned int first = n_properties;
+      n_properties += n;
+      return first;
+    }
+
+    /// Names of the stored fields with their sizes, for the memory report.
+    std::vector<std::pair<std::string, unsigned int>> description;
+  };
+
+
+  /// Reading and writing tensors from a flat property array.
+  namespace Fields
+  {
+    template <int dim>
+    inline Tensor<1, dim>
+    vector(const double *p)
+    {
+      Tensor<1, dim> v;
+      for (unsigned int d = 0; d < dim; ++d)
+        v[d] = p[d];
+      return v;
+    }
+
+    template <int dim>
+    inline void
+    store(const Tensor<1, dim> &v, double *p)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = v[d];
+    }
+
+    template <int dim>
+    inline Tensor<2, dim>
+    tensor(const double *p)
+    {
+      Tensor<2, dim> t;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          t[i][j] = p[i * dim + j];
+      return t;
+    }
+
+    template <int dim>
+    inline void
+    store(const Tensor<2, dim> &t, double *p)
+    {
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          p[i * dim + j] = t[i][j];
+    }
+
+    /// Symmetric tensors use deal.II's unrolled component order.
+    template <int dim>
+    inline SymmetricTensor<2, dim>
+    symmetric(const double *p)
+    {
+      SymmetricTensor<2, dim> s;
+      for (unsigned int k = 0; k < s.n_independent_components; ++k)
+        s.access_raw_entry(k) = p[k];
+      return s;
+    }
+
+    template <int dim>
+    inline void
+    store(const SymmetricTensor<2, dim> &s, double *p)
+    {
+      for (unsigned int k = 0; k < s.n_independent_components; ++k)
+        p[k] = s.access_raw_entry(k);
+    }
+  } // namespace Fields
+} // namespace mpm
+
+#endif

@@ -1,0 +1,133 @@
+#ifndef mpm_material_points_h
+#define mpm_material_points_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/background_grid.h>
+#include <mpm/field_layout.h>
+#include <mpm/material.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /// One body of the scene: a shape filled with material points.
+  template <int dim>
+  struct BodyParameters
+  {
+    /// Declares subsection "Body <index>" of section "Bodies".
+    static void
+    declare_parameters(ParameterHandler &prm, const unsigned int index);
+    /// Parses that subsection and creates the body's material.
+    void
+    parse_parameters(ParameterHandler &prm, const unsigned int index);
+
+    std::string name; ///< "Bodies/Body 0", for messages
+    enum class Shape
+    {
+      box,
+      ball
+    } shape;
+    Point<dim>               lower_corner, upper_corner; ///< box
+    Point<dim>               center;                     ///< ball
+    double                   radius;                     ///< ball
+    unsigned int             particles_per_cell;         ///< per direction
+    double                   density;
+    std::vector<std::string> initial_velocity; ///< one expression per component
+    std::string              material_name;
+    std::shared_ptr<Material<dim>> material;
+
+    bool
+    contains(const Point<dim> &x) const;
+  };
+
+
+  /// What to do with a material point that leaves the grid.
+  enum class OutOfGridPolicy
+  {
+    stop,  ///< stop the run with a message naming the particle
+    remove ///< delete it and count it in the statistics
+  };
+
+
+  /**
+   * The material points: deal.II's ParticleHandler, the scene's field
+   * layout, and the two operations that manage particles as a set:
+   * filling bodies at the start, and relocating points after they moved.
+   */
+  template <int dim>
+  class MaterialPoints
+  {
+  public:
+    MaterialPoints(const BackgroundGrid<dim>              &grid,
+                   const std::vector<BodyParameters<dim>> &bodies,
+                   const bool store_initial_position,
+                   MPI_Comm   comm);
+
+    Particles::ParticleHandler<dim> &
+    handler()
+    {
+      return particles;
+    }
+    const Particles::ParticleHandler<dim> &
+    handler() const
+    {
+      return particles;
+    }
+    const FieldLayout &
+    layout() const
+    {
+      return fields;
+    }
+    const std::vector<BodyParameters<dim>> &
+    bodies() const
+    {
+      return body_list;
+    }
+
+    /// Fill every body with points; fails if a body gets none.
+    void
+    generate();
+
+    /**
+     * Put points back in their cells after their positions changed: update
+     * reference coordinates of those that stayed (almost all), move those
+     * that left their cell, and only if some left this rank's cells do the
+     * collective deal.II sort. Returns the number of points removed because
+     * they left the grid (policy remove); with policy stop it throws
+     * RunError naming the first such point.
+     */
+    types::particle_index
+    relocate(const OutOfGridPolicy policy);
+
+    /// Smallest point mass in the scene (for the small-mass guard).
+    double
+    min_particle_mass() const
+    {
+      return minimum_mass;
+    }
+
+  private:
+    FieldLayout
+    assemble_layout(const bool store_initial_position) const;
+    std::string
+    describe_leaving_point(
+      const typename Particles::ParticleHandler<dim>::particle_iterator &p)
+      const;
+
+    const BackgroundGrid<dim>             &grid;
+    const std::vector<BodyParameters<dim>> body_list;
+    MPI_Comm                               comm;
+    const FieldLayout                      fields;
+    Particles::ParticleHandler<dim>        particles;
+    double                                 minimum_mass;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,116 @@
+#ifndef mpm_output_h
+#define mpm_output_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpm/background_grid.h>
+#include <mpm/material_points.h>
+#include <mpm/time_integrator.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  struct OutputParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /// True if field @p name (velocity, displacement, ...) is written.
+    bool
+    writes(const std::string &name) const;
+
+    std::string              directory;
+    double                   interval; ///< simulated time; 0 = every step
+    std::vector<std::string> fields;
+    bool                     grid_output;
+    double                   progress_interval; ///< wall seconds
+  };
+
+
+  /// Sums over all points of the scene at one instant (collective).
+  template <int dim>
+  struct Statistics
+  {
+    double                      kinetic_energy       = 0;
+    double                      strain_energy        = 0;
+    double                      gravitational_energy = 0;
+    Tensor<1, dim>              momentum;
+    Tensor<1, dim == 2 ? 1 : 3> angular_momentum;
+    double                      mass           = 0;
+    double                      momentum_scale = 0; ///< sum of m |v|
+    types::particle_index       n_particles    = 0;
+
+    double
+    total_energy() const
+    {
+      return kinetic_energy + strain_energy + gravitational_energy;
+    }
+
+    static Statistics
+    compute(const MaterialPoints<dim> &points,
+            const Tensor<1, dim>      &gravity,
+            MPI_Comm                   comm);
+  };
+
+
+  /**
+   * Everything written to disk: particles as VTU (+PVTU, PVD), optionally
+   * the grid, and statistics.csv. A file is only written from a state that
+   * passed the integrator's checks, so after a failed run the files on
+   * disk are the last good ones.
+   */
+  template <int dim>
+  class Output
+  {
+  public:
+    Output(const OutputParameters         &parameters,
+           const BackgroundGrid<dim>      &grid,
+           const MaterialPoints<dim>      &points,
+           const TimeIntegrator<dim>      &integrator,
+           const Tensor<1, dim>           &gravity,
+           const std::vector<std::string> &extra_columns,
+           MPI_Comm                        comm);
+
+    /// Write statistics and, if due, the fields; @p extra are values of
+    /// the extra columns (verification errors).
+    void
+    write(const Statistics<dim>     &statistics,
+          const std::vector<double> &extra,
+          const double               wall_seconds);
+
+    /// Is an output due at time @p t? And the next time one is due.
+    double
+    next_output_time() const
+    {
+      return next_time;
+    }
+
+  private:
+    void
+    write_particles();
+    void
+    write_grid();
+
+    const OutputParameters                      prm;
+    const BackgroundGrid<dim>                  &grid;
+    const MaterialPoints<dim>                  &points;
+    const TimeIntegrator<dim>                  &integrator;
+    const Tensor<1, dim>                        gravity;
+    MPI_Comm                                    comm;
+    const bool                                  is_root;
+    unsigned int                                counter   = 0;
+    double                                      next_time = 0;
+    std::ofstream                               statistics_file;
+    std::vector<std::pair<double, std::string>> particle_files, grid_files;
+  };
+} // namespace mpm
+
+#endif

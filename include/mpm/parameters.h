@@ -1,0 +1,97 @@
+#ifndef mpm_parameters_h
+#define mpm_parameters_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * A user mistake in the scene: the message names the parameter, the value
+   * and what is allowed. main() prints it on one line and exits non-zero,
+   * without a stack trace.
+   */
+  class InputError : public std::runtime_error
+  {
+  public:
+    InputError(const std::string &parameter,
+               const std::string &value,
+               const std::string &allowed);
+  };
+
+  /**
+   * A run that went wrong (instability, particle left the grid): the
+   * message is the diagnosis. The last good output stays on disk.
+   */
+  class RunError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /**
+   * Collective failure: every rank calls this at the same point; if any
+   * rank has a non-empty @p local_diagnosis, all ranks throw RunError with
+   * the diagnosis of the lowest such rank. A throw on one rank alone would
+   * leave the others waiting in the next collective call.
+   */
+  void
+  raise_if_any_failed(const std::string &local_diagnosis, MPI_Comm comm);
+
+  /**
+   * Helpers that read an entry of the current subsection of @p prm and
+   * check it, so that every check produces the same kind of message. The
+   * @p path is the subsection path used in messages ("Body 0/density").
+   */
+  namespace Parse
+  {
+    /// A double that must lie in (lower, upper) or [lower, upper].
+    double
+    bounded_double(const ParameterHandler &prm,
+                   const std::string      &path,
+                   const std::string      &name,
+                   const double            lower,
+                   const double            upper,
+                   const bool              lower_open = false,
+                   const bool              upper_open = false);
+
+    /// A comma-separated list of @p n doubles; a single value is taken for
+    /// every component, an empty string as zero.
+    std::vector<double>
+    double_list(const ParameterHandler &prm,
+                const std::string      &path,
+                const std::string      &name,
+                const unsigned int      n);
+
+    template <int dim>
+    Point<dim>
+    point(const ParameterHandler &prm,
+          const std::string      &path,
+          const std::string      &name);
+
+    template <int dim>
+    Tensor<1, dim>
+    vector(const ParameterHandler &prm,
+           const std::string      &path,
+           const std::string      &name);
+
+    /// Expressions separated by ';' (deal.II FunctionParser syntax), one
+    /// per component; a single expression is taken for every component and
+    /// an empty string as zero.
+    std::vector<std::string>
+    expression_list(const ParameterHandler &prm,
+                    const std::string      &name,
+                    const unsigned int      n,
+                    const std::string      &path);
+  } // namespace Parse
+} // namespace mpm
+
+#endif

@@ -1,0 +1,64 @@
+#ifndef mpm_simulation_h
+#define mpm_simulation_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpm/background_grid.h>
+#include <mpm/material_points.h>
+#include <mpm/output.h>
+#include <mpm/time_integrator.h>
+#include <mpm/verification.h>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * Declare every parameter of a scene with @p n_bodies bodies. The
+   * declarations do not depend on the dimension: vectors are lists that
+   * are checked against it when they are parsed.
+   */
+  void
+  declare_scene_parameters(ParameterHandler &prm, const unsigned int n_bodies);
+
+
+  /// Wires the components of the design together and runs the scene.
+  template <int dim>
+  class Simulation
+  {
+  public:
+    Simulation(ParameterHandler &prm, MPI_Comm comm);
+
+    void
+    run();
+
+  private:
+    void
+    print_scene_summary() const;
+    void
+    write_output(const double wall_seconds);
+    void
+    print_progress(const double wall_seconds) const;
+    void
+    print_performance(const double wall_seconds) const;
+
+    MPI_Comm                         comm;
+    ConditionalOStream               pcout;
+    GridParameters<dim>              grid_parameters;
+    IntegratorParameters<dim>        integrator_parameters;
+    std::vector<BodyParameters<dim>> body_parameters;
+    OutputParameters                 output_parameters;
+    VerificationParameters           verification_parameters;
+
+    TimerOutput                          timer;
+    std::unique_ptr<BackgroundGrid<dim>> grid;
+    std::unique_ptr<MaterialPoints<dim>> points;
+    std::unique_ptr<TimeIntegrator<dim>> integrator;
+    std::unique_ptr<Verification<dim>>   verification;
+    std::unique_ptr<Output<dim>>         output;
+    double                               last_output_time = -1;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,180 @@
+#ifndef mpm_time_integrator_h
+#define mpm_time_integrator_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <mpm/background_grid.h>
+#include <mpm/material_points.h>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /// When the stress is updated within a step.
+  enum class UpdateScheme
+  {
+    USL, ///< update stress last, from the new grid velocity
+    USF, ///< update stress first, from the grid velocity before forces
+    MUSL ///< USL with the updated particle momentum mapped back to the grid
+  };
+
+  template <int dim>
+  struct IntegratorParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    double          end_time;
+    double          cfl_number;
+    double          fixed_time_step; ///< 0: from the CFL condition
+    UpdateScheme    scheme;
+    double          flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
+    Tensor<1, dim>  gravity;
+    double          damping; ///< mass-proportional, in 1/s
+    double          small_mass_fraction;
+    OutOfGridPolicy out_of_grid;
+  };
+
+
+  /**
+   * The explicit MPM step, particles -> grid -> particles:
+   *
+   *   USL : P2G(m, mv, f)  grid(v, v*)  G2P(v, x, L, F)        stress
+   *   USF : P2G(m, mv)     grid(v)      kinematics(L, F) stress
+   *         P2G(f)         grid(v*)     G2P(v, x)
+   *   MUSL: P2G(m, mv, f)  grid(v, v*)  G2P(v, x)
+   *         P2G(mv) again  grid(v)      kinematics(L, F)       stress
+   *
+   * followed by relocation of the points and a check of their state. The
+   * variants share every kernel; only the order differs.
+   *
+   * Nodal data: `grid_sums` holds [m, mv (dim), f (dim)] per node and is
+   * summed over ranks with compress(add); `grid_velocity` holds [m, v, v*]
+   * per node (mass, velocity before and after the force update) and is
+   * read through ghost values.
+   *
+   * Small-mass guard: a node that only the far corner of a point's stencil
+   * reaches has a mass that tends to zero while its force does not, so its
+   * velocity can become huge. Particle velocities and positions are safe,
+   * because they see that node through weight/mass <= 1/m_p; the velocity
+   * gradient is not, because the gradient weight does not vanish. Nodes
+   * lighter than 'small mass fraction' times the smallest point mass are
+   * therefore left out of L (their velocity is replaced by the point's own
+   * grid velocity, which keeps L zero for a rigid translation), while they
+   * keep their full momentum update, so momentum is conserved exactly.
+   */
+  template <int dim>
+  class TimeIntegrator
+  {
+  public:
+    TimeIntegrator(const IntegratorParameters<dim> &parameters,
+                   const BackgroundGrid<dim>       &grid,
+                   MaterialPoints<dim>             &points,
+                   TimerOutput                     &timer,
+                   MPI_Comm                         comm);
+
+    /// Advance by one step, of at most @p max_dt. Throws RunError (on all
+    /// ranks) with a diagnosis if the new state is not sound.
+    void
+    step(const double max_dt);
+
+    double
+    time() const
+    {
+      return t;
+    }
+    unsigned int
+    step_number() const
+    {
+      return n_steps;
+    }
+    double
+    last_time_step() const
+    {
+      return last_dt;
+    }
+    types::particle_index
+    n_removed_particles() const
+    {
+      return n_removed;
+    }
+
+    /// Mass and latest velocity of locally owned node @p i (grid output).
+    double
+    nodal_mass(const unsigned int i) const
+    {
+      return grid_velocity.local_element(n_velocities * i + node_mass);
+    }
+    double
+    nodal_velocity(const unsigned int i, const unsigned int d) const
+    {
+      return grid_velocity.local_element(n_velocities * i + v_new + d);
+    }
+
+    /// Stable time step of the current state: CFL number times
+    /// h / max(c_p + |v_p|). Also checks that every point is finite.
+    double
+    stable_time_step();
+
+  private:
+    // Components of the interleaved nodal vectors.
+    static constexpr unsigned int mass = 0, momentum = 1, force = 1 + dim;
+    static constexpr unsigned int n_sums    = 1 + 2 * dim;
+    static constexpr unsigned int node_mass = 0, v_old = 1, v_new = 1 + dim;
+    static constexpr unsigned int n_velocities = 1 + 2 * dim;
+
+    void
+    scatter_to_grid(const bool mass_and_momentum, const bool forces);
+    void
+    grid_velocities_from_momentum(const unsigned int slot);
+    void
+    grid_velocities_after_forces(const double dt);
+    void
+    gather_to_particles(const double dt, const bool kinematics);
+    void
+    update_kinematics(const double dt, const unsigned int slot);
+    void
+    update_stresses(const double dt);
+    void
+    apply_velocity_constraints(const unsigned int slot);
+    /// L at a point from the nodal velocities in @p slot (small-mass guard).
+    template <typename Nodes, typename Weights, typename Gradients>
+    Tensor<2, dim>
+    velocity_gradient(const Nodes       &nodes,
+                      const Weights     &w,
+                      const Gradients   &grad,
+                      const unsigned int slot) const;
+    /// Store L, update volume and F by I + dt L; note a failure if the
+    /// point would invert.
+    template <typename Iterator>
+    void
+    apply_velocity_gradient(const Iterator       &p,
+                            double               *q,
+                            const Tensor<2, dim> &L,
+                            const double          dt);
+
+    const IntegratorParameters<dim> prm;
+    const BackgroundGrid<dim>      &grid;
+    MaterialPoints<dim>            &points;
+    TimerOutput                    &timer;
+    MPI_Comm                        comm;
+
+    LinearAlgebra::distributed::Vector<double> grid_sums;
+    LinearAlgebra::distributed::Vector<double> grid_velocity;
+    std::vector<double>                        wave_modulus_of_body;
+
+    double                min_nodal_mass;
+    double                t         = 0;
+    double                last_dt   = 0;
+    unsigned int          n_steps   = 0;
+    types::particle_index n_removed = 0;
+    std::string           failure; ///< first diagnosis of this step
+  };
+} // namespace mpm
+
+#endif

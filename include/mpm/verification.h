@@ -1,0 +1,81 @@
+#ifndef mpm_verification_h
+#define mpm_verification_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpm/material_points.h>
+#include <mpm/output.h>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  struct VerificationParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    enum class Exact
+    {
+      none,
+      vibrating_bar,     ///< fixed-free bar, mode 1, body 0
+      self_weight_column ///< body 0 at rest under gravity, uniaxial stress
+    } exact;
+    double amplitude;            ///< vibrating bar: v0
+    double error_bound;          ///< 0: not checked
+    double energy_drift_bound;   ///< 0: not checked
+    double momentum_drift_bound; ///< 0: not checked
+  };
+
+
+  /**
+   * Compares the run with what is known about it: an exact solution, and
+   * the conservation of energy and momentum. The measured values become
+   * columns of statistics.csv; check() turns a bound that was exceeded
+   * into a failed run, which is how the tests assert accuracy.
+   */
+  template <int dim>
+  class Verification
+  {
+  public:
+    Verification(const VerificationParameters &parameters,
+                 const MaterialPoints<dim>    &points,
+                 const Tensor<1, dim>         &gravity,
+                 MPI_Comm                      comm);
+
+    /// Does the exact solution need the initial positions of the points?
+    static bool
+    needs_initial_position(const VerificationParameters &parameters);
+
+    /// Names of the columns evaluate() returns.
+    std::vector<std::string>
+    columns() const;
+
+    /// Measure the state at time @p t (collective).
+    std::vector<double>
+    evaluate(const Statistics<dim> &statistics, const double t);
+
+    /// Throw RunError if a bound was exceeded; print what was measured.
+    void
+    check(std::ostream &out) const;
+
+  private:
+    double
+    exact_solution_error(const double t) const;
+
+    const VerificationParameters prm;
+    const MaterialPoints<dim>   &points;
+    const Tensor<1, dim>         gravity;
+    MPI_Comm                     comm;
+
+    bool           have_initial_state = false;
+    double         initial_energy, initial_momentum_scale;
+    Tensor<1, dim> initial_momentum;
+    double         max_error = 0, last_error = 0, max_energy_drift = 0,
+           max_momentum_drift = 0;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,269 @@
+#include <deal.II/base/index_set.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <mpm/background_grid.h>
+#include <mpm/parameters.h>
+
+namespace mpm
+{
+  namespace
+  {
+    const char *face_names[] =
+      {"x min", "x max", "y min", "y max", "z min", "z max"};
+  }
+
+
+  template <int dim>
+  void
+  GridParameters<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Grid");
+    prm.declare_entry("lower corner",
+                      "0",
+                      Patterns::Anything(),
+                      "Lower corner of the box, one value per dimension "
+                      "(comma-separated) or one value for all.");
+    prm.declare_entry("upper corner",
+                      "1",
+                      Patterns::Anything(),
+                      "Upper corner of the box.");
+    prm.declare_entry("cells",
+                      "16",
+                      Patterns::Anything(),
+                      "Number of cells in each direction (one value for "
+                      "all, or one per dimension).");
+    for (unsigned int f = 0; f < 6; ++f)
+      prm.declare_entry(std::string("boundary ") + face_names[f],
+                        "slip",
+                        Patterns::Selection("free|fixed|slip"),
+                        "Velocity condition on this face of the box: free, "
+                        "fixed (all components zero) or slip (normal "
+                        "component zero). Faces beyond the dimension are "
+                        "ignored.");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  GridParameters<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Grid");
+    lower_corner = Parse::point<dim>(prm, "Grid", "lower corner");
+    upper_corner = Parse::point<dim>(prm, "Grid", "upper corner");
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(upper_corner[d] > lower_corner[d]))
+        throw InputError("Grid/upper corner",
+                         prm.get("upper corner"),
+                         "must exceed 'Grid/lower corner' in every direction");
+    const auto cells = Parse::double_list(prm, "Grid", "cells", dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        if (cells[d] < 1 || cells[d] > 1e5 || cells[d] != std::floor(cells[d]))
+          throw InputError("Grid/cells",
+                           prm.get("cells"),
+                           "must be whole numbers in [1, 100000]");
+        n_cells[d] = static_cast<unsigned int>(cells[d]);
+      }
+    for (unsigned int f = 0; f < 2 * dim; ++f)
+      {
+        const std::string b = prm.get(std::string("boundary ") + face_names[f]);
+        boundary[f]         = (b == "free"    ? BoundaryType::free
+                               : b == "fixed" ? BoundaryType::fixed
+                                              : BoundaryType::slip);
+      }
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  BackgroundGrid<dim>::BackgroundGrid(const GridParameters<dim> &parameters,
+                                      MPI_Comm                   comm)
+    : prm(parameters)
+    , comm(comm)
+    , fe(1)
+  {
+    // p4est needs dim >= 2; a 1D grid is serial (verification problems).
+    if constexpr (dim == 1)
+      {
+        if (Utilities::MPI::n_mpi_processes(comm) > 1)
+          throw InputError("Simulation/dimension",
+                           "1",
+                           "runs on one MPI rank only (deal.II has no "
+                           "distributed 1D triangulation)");
+        tria = std::make_unique<Triangulation<dim>>();
+      }
+    else
+      tria = std::make_unique<parallel::distributed::Triangulation<dim>>(comm);
+
+    std::vector<unsigned int> repetitions(prm.n_cells.begin(),
+                                          prm.n_cells.end());
+    // colorize: face f of the box gets boundary id f (x-, x+, y-, ...).
+    GridGenerator::subdivided_hyper_rectangle(
+      *tria, repetitions, prm.lower_corner, prm.upper_corner, true);
+
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        h[d]     = (prm.upper_corner[d] - prm.lower_corner[d]) / prm.n_cells[d];
+        inv_h[d] = 1. / h[d];
+      }
+
+    dofs.reinit(*tria);
+    dofs.distribute_dofs(fe);
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+    scalar_partitioner =
+      std::make_shared<Utilities::MPI::Partitioner>(dofs.locally_owned_dofs(),
+                                                    relevant,
+                                                    comm);
+    n_owned_nodes = scalar_partitioner->locally_owned_size();
+
+    build_cell_tables();
+    build_node_constraints();
+  }
+
+
+  template <int dim>
+  double
+  BackgroundGrid<dim>::min_cell_size() const
+  {
+    double m = h[0];
+    for (unsigned int d = 1; d < dim; ++d)
+      m = std::min(m, h[d]);
+    return m;
+  }
+
+
+  template <int dim>
+  unsigned int
+  BackgroundGrid<dim>::locate(const Point<dim> &x, Point<dim> &reference) const
+  {
+    unsigned int index  = 0;
+    unsigned int stride = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double s = (x[d] - prm.lower_corner[d]) * inv_h[d];
+        // The negated comparison also sends NaN to 'outside'.
+        if (!(s >= 0.) || !(s < prm.n_cells[d]))
+          return invalid;
+        const unsigned int i = static_cast<unsigned int>(s);
+        reference[d]         = s - i;
+        index += i * stride;
+        stride *= prm.n_cells[d];
+      }
+    return index;
+  }
+
+
+  template <int dim>
+  bool
+  BackgroundGrid<dim>::contains(const Point<dim> &lower,
+                                const Point<dim> &upper) const
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (lower[d] < prm.lower_corner[d] || upper[d] > prm.upper_corner[d])
+        return false;
+    return true;
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::build_cell_tables()
+  {
+    unsigned int n_total = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_total *= prm.n_cells[d];
+    cells.resize(n_total);
+    local_nodes_of_cell.resize(n_total);
+    cartesian_index_of_active_cell.assign(tria->n_active_cells(), invalid);
+
+    std::vector<types::global_dof_index> dof_indices(nodes_per_cell);
+    for (const auto &cell : tria->active_cell_iterators())
+      {
+        Point<dim>         reference;
+        const unsigned int index = locate(cell->center(), reference);
+        cells[index]             = cell;
+        cartesian_index_of_active_cell[cell->active_cell_index()] = index;
+        if (!cell->is_locally_owned())
+          continue;
+        owned_cells.push_back(index);
+        // FE_Q(1) numbers its dofs like the vertices: lexicographically.
+        typename DoFHandler<dim>::active_cell_iterator dof_cell(&*tria,
+                                                                cell->level(),
+                                                                cell->index(),
+                                                                &dofs);
+        dof_cell->get_dof_indices(dof_indices);
+        for (unsigned int v = 0; v < nodes_per_cell; ++v)
+          local_nodes_of_cell[index][v] =
+            scalar_partitioner->global_to_local(dof_indices[v]);
+      }
+    // Lexicographic order keeps neighbouring cells, and so the nodal data
+    // they touch, close in memory during the particle loops.
+    std::sort(owned_cells.begin(), owned_cells.end());
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::build_node_constraints()
+  {
+    std::vector<unsigned int>            mask(n_owned_nodes, 0u);
+    std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->at_boundary(f))
+            {
+              const unsigned int id   = cell->face(f)->boundary_id();
+              unsigned int       bits = 0;
+              if (prm.boundary[id] == BoundaryType::fixed)
+                bits = (1u << dim) - 1;
+              else if (prm.boundary[id] == BoundaryType::slip)
+                bits = 1u << (id / 2);
+              if (bits == 0)
+                continue;
+              cell->face(f)->get_dof_indices(face_dofs);
+              for (const auto dof : face_dofs)
+                if (scalar_partitioner->in_local_range(dof))
+                  mask[scalar_partitioner->global_to_local(dof)] |= bits;
+            }
+    for (unsigned int i = 0; i < n_owned_nodes; ++i)
+      if (mask[i] != 0)
+        node_constraints.emplace_back(i, mask[i]);
+  }
+
+
+  template <int dim>
+  std::shared_ptr<const Utilities::MPI::Partitioner>
+  BackgroundGrid<dim>::make_partitioner(const unsigned int n_components) const
+  {
+    // Node i, component c has index n_components*i + c, so the local
+    // numbering of this partitioner is n_components*(scalar local) + c.
+    const auto &owned_nodes = scalar_partitioner->locally_owned_range();
+    const auto &ghost_nodes = scalar_partitioner->ghost_indices();
+    const auto  n           = n_components * owned_nodes.size();
+    IndexSet    owned(n), ghosts(n);
+    for (const auto i : owned_nodes)
+      owned.add_range(n_components * i, n_components * (i + 1));
+    for (const auto i : ghost_nodes)
+      ghosts.add_range(n_components * i, n_components * (i + 1));
+    owned.compress();
+    ghosts.compress();
+    return std::make_shared<Utilities::MPI::Partitioner>(owned, ghosts, comm);
+  }
+
+
+  template struct GridParameters<1>;
+  template struct GridParameters<2>;
+  template struct GridParameters<3>;
+  template class BackgroundGrid<1>;
+  template class BackgroundGrid<2>;
+  template class BackgroundGrid<3>;
+} // namespace mpm

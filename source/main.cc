@@ -1,0 +1,224 @@
+// dealii-mpm: run a Material Point Method scene described in a .prm file.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpm/parameters.h>
+#include <mpm/simulation.h>
+
+#include <iostream>
+#include <regex>
+#include <sstream>
+
+namespace
+{
+  using namespace dealii;
+
+  const char *usage =
+    "Usage: dealii-mpm [options] scene.prm\n"
+    "  -s \"Section/Name=value\"  override one parameter (repeatable), e.g.\n"
+    "                           -s \"Grid/cells=64\" -s \"Bodies/Body "
+    "0/density=2000\"\n"
+    "  --print-parameters        print every parameter with its default,\n"
+    "                           allowed values and documentation\n"
+    "  --help                    this text\n";
+
+
+  struct CommandLine
+  {
+    std::string                                      scene;
+    std::vector<std::pair<std::string, std::string>> overrides;
+    bool                                             help             = false;
+    bool                                             print_parameters = false;
+  };
+
+
+  CommandLine
+  parse_command_line(const int argc, char **argv)
+  {
+    CommandLine c;
+    for (int i = 1; i < argc; ++i)
+      {
+        const std::string a = argv[i];
+        if (a == "--help" || a == "-h")
+          c.help = true;
+        else if (a == "--print-parameters")
+          c.print_parameters = true;
+        else if (a == "-s")
+          {
+            if (i + 1 == argc)
+              throw std::runtime_error(
+                "option -s needs \"Section/Name=value\"");
+            const std::string o  = argv[++i];
+            const auto        eq = o.find('=');
+            if (eq == std::string::npos || o.find('/') == std::string::npos)
+              throw std::runtime_error(
+                "option -s '" + o +
+                "' is not of the form \"Section/Name=value\"");
+            c.overrides.emplace_back(Utilities::trim(o.substr(0, eq)),
+                                     Utilities::trim(o.substr(eq + 1)));
+          }
+        else if (!a.empty() && a[0] == '-')
+          throw std::runtime_error("unknown option '" + a + "'\n" + usage);
+        else if (c.scene.empty())
+          c.scene = a;
+        else
+          throw std::runtime_error("more than one scene file given ('" +
+                                   c.scene + "', '" + a + "')");
+      }
+    return c;
+  }
+
+
+  /// Set "A/B/name" = value; throws if the entry is not declared or the
+  /// value does not fit its pattern.
+  void
+  apply_override(ParameterHandler  &prm,
+                 const std::string &path,
+                 const std::string &value)
+  {
+    const auto parts = Utilities::split_string_list(path, '/');
+    for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+      prm.enter_subsection(parts[i]);
+    try
+      {
+        prm.set(parts.back(), value);
+      }
+    catch (...)
+      {
+        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+          prm.leave_subsection();
+        throw;
+      }
+    for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+      prm.leave_subsection();
+  }
+
+
+  /// deal.II's own message for a malformed file or value, on one line.
+  std::string
+  one_line(const ExceptionBase &e)
+  {
+    std::ostringstream s;
+    e.print_info(s);
+    std::string text = std::regex_replace(s.str(), std::regex("\\s+"), " ");
+    return Utilities::trim(text);
+  }
+
+
+  /**
+   * Read the scene in two passes: the first learns the number of bodies
+   * (and tolerates everything it does not know yet), the second declares
+   * that many bodies and reads strictly.
+   */
+  void
+  read_scene(ParameterHandler &prm, const CommandLine &c)
+  {
+    unsigned int n_bodies = 1;
+    {
+      ParameterHandler first;
+      mpm::declare_scene_parameters(first, 1);
+      first.parse_input(c.scene, "", true);
+      for (const auto &[path, value] : c.overrides)
+        if (path == "Bodies/number of bodies")
+          apply_override(first, path, value);
+      first.enter_subsection("Bodies");
+      n_bodies = first.get_integer("number of bodies");
+      first.leave_subsection();
+    }
+    mpm::declare_scene_parameters(prm, n_bodies);
+    prm.parse_input(c.scene);
+    for (const auto &[path, value] : c.overrides)
+      apply_override(prm, path, value);
+  }
+
+
+  template <int dim>
+  void
+  run(ParameterHandler &prm)
+  {
+    // Let the simulation (and its TimerOutput, which communicates in its
+    // destructor) be destroyed normally before a failure is passed on.
+    std::exception_ptr failure;
+    {
+      mpm::Simulation<dim> simulation(prm, MPI_COMM_WORLD);
+      try
+        {
+          simulation.run();
+        }
+      catch (...)
+        {
+          failure = std::current_exception();
+        }
+    }
+    if (failure)
+      std::rethrow_exception(failure);
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root  = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  auto       error = [root](const std::string &kind, const std::string &what) {
+    if (root)
+      std::cerr << "dealii-mpm: " << kind << ": " << what << std::endl;
+  };
+  try
+    {
+      const CommandLine c = parse_command_line(argc, argv);
+      if (c.help)
+        {
+          if (root)
+            std::cout << usage;
+          return 0;
+        }
+      ParameterHandler prm;
+      if (c.print_parameters)
+        {
+          mpm::declare_scene_parameters(prm, 1);
+          if (root)
+            prm.print_parameters(std::cout, ParameterHandler::PRM);
+          return 0;
+        }
+      if (c.scene.empty())
+        throw std::runtime_error(std::string("no scene file given\n") + usage);
+      read_scene(prm, c);
+      prm.enter_subsection("Simulation");
+      const int dim = prm.get_integer("dimension");
+      prm.leave_subsection();
+      switch (dim)
+        {
+          case 1:
+            run<1>(prm);
+            break;
+          case 2:
+            run<2>(prm);
+            break;
+          default:
+            run<3>(prm);
+        }
+    }
+  catch (const mpm::InputError &e)
+    {
+      error("input error", e.what());
+      return 1;
+    }
+  catch (const mpm::RunError &e)
+    {
+      error("run stopped", e.what());
+      return 2;
+    }
+  catch (const ExceptionBase &e)
+    {
+      error("input error", one_line(e));
+      return 1;
+    }
+  catch (const std::exception &e)
+    {
+      error("error", e.what());
+      return 1;
+    }
+  return 0;
+}

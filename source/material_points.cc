@@ -1,0 +1,394 @@
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/mpi.h>
+
+#include <mpm/material_points.h>
+#include <mpm/parameters.h>
+
+#include <sstream>
+
+namespace mpm
+{
+  namespace
+  {
+    std::string
+    prm_text(const std::vector<std::string> &expressions)
+    {
+      std::string s;
+      for (const auto &e : expressions)
+        s += (s.empty() ? "" : "; ") + e;
+      return s;
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  BodyParameters<dim>::declare_parameters(ParameterHandler  &prm,
+                                          const unsigned int index)
+  {
+    prm.enter_subsection("Bodies");
+    prm.enter_subsection("Body " + std::to_string(index));
+    prm.declare_entry("shape",
+                      "box",
+                      Patterns::Selection("box|ball"),
+                      "Shape of the body: box (lower/upper corner) or ball "
+                      "(center/radius; a disk in 2D).");
+    prm.declare_entry(
+      "lower corner",
+      "0.25",
+      Patterns::Anything(),
+      "Box: lower corner, one value per dimension or one for all.");
+    prm.declare_entry("upper corner",
+                      "0.75",
+                      Patterns::Anything(),
+                      "Box: upper corner.");
+    prm.declare_entry("center", "0.5", Patterns::Anything(), "Ball: center.");
+    prm.declare_entry("radius",
+                      "0.25",
+                      Patterns::Anything(),
+                      "Ball: radius, > 0.");
+    prm.declare_entry("particles per cell",
+                      "2",
+                      Patterns::Anything(),
+                      "Material points per cell and direction, in [1, 10].");
+    prm.declare_entry("density",
+                      "1000",
+                      Patterns::Anything(),
+                      "Initial mass density in kg/m^3, > 0.");
+    prm.declare_entry("initial velocity",
+                      "0",
+                      Patterns::Anything(),
+                      "Initial velocity: one expression per component "
+                      "separated by ';' (or one for all), in the variables "
+                      "x, y, z of the initial position; pi is known. "
+                      "Example: '0.1*sin(pi*x/50)'.");
+    prm.declare_entry("material",
+                      "linear elastic",
+                      Patterns::Selection(MaterialRegistry::names()),
+                      "Constitutive model; its parameters are read from the "
+                      "subsection of the same name.");
+    MaterialRegistry::declare_parameters(prm);
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  BodyParameters<dim>::parse_parameters(ParameterHandler  &prm,
+                                        const unsigned int index)
+  {
+    name = "Bodies/Body " + std::to_string(index);
+    prm.enter_subsection("Bodies");
+    prm.enter_subsection("Body " + std::to_string(index));
+    shape = prm.get("shape") == "box" ? Shape::box : Shape::ball;
+    if (shape == Shape::box)
+      {
+        lower_corner = Parse::point<dim>(prm, name, "lower corner");
+        upper_corner = Parse::point<dim>(prm, name, "upper corner");
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!(upper_corner[d] > lower_corner[d]))
+            throw InputError(name + "/upper corner",
+                             prm.get("upper corner"),
+                             "must exceed the lower corner in every direction");
+      }
+    else
+      {
+        center = Parse::point<dim>(prm, name, "center");
+        radius = Parse::bounded_double(prm, name, "radius", 0, 1e300, true);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lower_corner[d] = center[d] - radius;
+            upper_corner[d] = center[d] + radius;
+          }
+      }
+    particles_per_cell = static_cast<unsigned int>(
+      Parse::bounded_double(prm, name, "particles per cell", 1, 10));
+    if (particles_per_cell != prm.get_double("particles per cell"))
+      throw InputError(name + "/particles per cell",
+                       prm.get("particles per cell"),
+                       "must be a whole number in [1, 10]");
+    density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
+    initial_velocity =
+      Parse::expression_list(prm, "initial velocity", dim, name);
+    material_name = prm.get("material");
+    material      = MaterialRegistry::create<dim>(material_name, prm, name);
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  bool
+  BodyParameters<dim>::contains(const Point<dim> &x) const
+  {
+    if (shape == Shape::ball)
+      return x.distance_square(center) < radius * radius;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
+        return false;
+    return true;
+  }
+
+
+
+  template <int dim>
+  MaterialPoints<dim>::MaterialPoints(
+    const BackgroundGrid<dim>              &grid,
+    const std::vector<BodyParameters<dim>> &bodies,
+    const bool                              store_initial_position,
+    MPI_Comm                                comm)
+    : grid(grid)
+    , body_list(bodies)
+    , comm(comm)
+    , fields(assemble_layout(store_initial_position))
+    , particles(grid.triangulation(), grid.mapping(), fields.n_properties)
+    , minimum_mass(0)
+  {
+    for (const auto &b : body_list)
+      if (!grid.contains(b.lower_corner, b.upper_corner))
+        {
+          std::ostringstream s;
+          s << "(" << b.lower_corner << ") to (" << b.upper_corner << ")";
+          throw InputError(b.name + (b.shape == BodyParameters<dim>::Shape::box
+                                       ? "/upper corner"
+                                       : "/radius"),
+                           s.str(),
+                           "the body must lie inside the grid box");
+        }
+  }
+
+
+  template <int dim>
+  FieldLayout
+  MaterialPoints<dim>::assemble_layout(const bool store_initial_position) const
+  {
+    FieldLayout l;
+    auto        add = [&l](const std::string &name, const unsigned int n) {
+      l.description.emplace_back(name, n);
+      return l.add(n);
+    };
+    l.mass     = add("mass", 1);
+    l.volume   = add("volume", 1);
+    l.body     = add("body", 1);
+    l.velocity = add("velocity", dim);
+    l.stress = add("stress", SymmetricTensor<2, dim>::n_independent_components);
+    l.velocity_gradient = add("velocity gradient", dim * dim);
+    bool need_F         = false;
+    for (const auto &b : body_list)
+      need_F = need_F || b.material->needs_deformation_gradient();
+    if (need_F)
+      l.deformation_gradient = add("deformation gradient", dim * dim);
+    if (store_initial_position)
+      l.initial_position = add("initial position", dim);
+    return l;
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::generate()
+  {
+    const FieldLayout                                 &l = fields;
+    std::vector<Point<dim>>                            positions;
+    std::vector<std::pair<unsigned int, unsigned int>> where; // (cell, body)
+    std::vector<std::vector<double>>                   props;
+    std::vector<Point<dim>>                            references;
+    double                                             cell_volume = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      cell_volume *= grid.cell_size()[d];
+
+    std::vector<types::particle_index> count(body_list.size(), 0);
+    minimum_mass = std::numeric_limits<double>::max();
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      {
+        const auto         &body = body_list[b];
+        FunctionParser<dim> velocity(dim);
+        try
+          {
+            velocity.initialize(FunctionParser<dim>::default_variable_names(),
+                                body.initial_velocity,
+                                {{"pi", numbers::PI}});
+          }
+        catch (...)
+          {
+            throw InputError(body.name + "/initial velocity",
+                             prm_text(body.initial_velocity),
+                             "is not a valid expression in x, y, z");
+          }
+        const unsigned int n      = body.particles_per_cell;
+        const unsigned int n_sub  = Utilities::fixed_power<dim>(n);
+        const double       volume = cell_volume / n_sub;
+        const double       mass   = body.density * volume;
+        minimum_mass              = std::min(minimum_mass, mass);
+        for (const auto &cell : grid.triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (unsigned int s = 0; s < n_sub; ++s)
+              {
+                // Points at the centres of n^dim sub-cells: interior, never
+                // on a face, where deal.II 9.4's in-cell test can lose them.
+                Point<dim>   xi;
+                unsigned int rest = s;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    xi[d] = ((rest % n) + 0.5) / n;
+                    rest /= n;
+                  }
+                Point<dim> x = cell->vertex(0);
+                for (unsigned int d = 0; d < dim; ++d)
+                  x[d] += xi[d] * grid.cell_size()[d];
+                if (!body.contains(x))
+                  continue;
+                std::vector<double> p(l.n_properties, 0.);
+                p[l.mass]   = mass;
+                p[l.volume] = volume;
+                p[l.body]   = b;
+                for (unsigned int d = 0; d < dim; ++d)
+                  p[l.velocity + d] = velocity.value(x, d);
+                if (l.deformation_gradient != FieldLayout::absent)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    p[l.deformation_gradient + d * dim + d] = 1.;
+                if (l.initial_position != FieldLayout::absent)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    p[l.initial_position + d] = x[d];
+                positions.push_back(x);
+                references.push_back(xi);
+                where.emplace_back(grid.cartesian_index(cell), b);
+                props.push_back(std::move(p));
+                ++count[b];
+              }
+      }
+    minimum_mass = Utilities::MPI::min(minimum_mass, comm);
+
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      if (Utilities::MPI::sum(count[b], comm) == 0)
+        throw InputError(body_list[b].name + "/particles per cell",
+                         std::to_string(body_list[b].particles_per_cell),
+                         "no material point falls inside the body: make it "
+                         "larger than a cell or use more points per cell");
+
+    // Globally unique ids, numbered rank by rank.
+    const types::particle_index n_local = positions.size();
+    types::particle_index       first   = 0;
+    MPI_Exscan(&n_local,
+               &first,
+               1,
+               Utilities::MPI::mpi_type_id_for_type<types::particle_index>,
+               MPI_SUM,
+               comm);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      first = 0; // MPI_Exscan leaves rank 0's result undefined
+    particles.reserve(n_local);
+    for (types::particle_index i = 0; i < n_local; ++i)
+      particles.insert_particle(positions[i],
+                                references[i],
+                                first + i,
+                                grid.cell(where[i].first),
+                                make_array_view(props[i]));
+    particles.update_cached_numbers();
+  }
+
+
+  template <int dim>
+  types::particle_index
+  MaterialPoints<dim>::relocate(const OutOfGridPolicy policy)
+  {
+    using iterator =
+      typename Particles::ParticleHandler<dim>::particle_iterator;
+    // Points to delete from their old place, in visiting order: those that
+    // moved to another cell of this rank (a copy was inserted there) and
+    // those that left the grid.
+    std::vector<iterator> removals;
+    std::string           failure;
+    types::particle_index n_lost   = 0;
+    bool                  off_rank = false;
+    std::vector<double>   buffer(fields.n_properties);
+
+    for (const auto &cell : grid.triangulation().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        // Count, not end(): inserting into a previously empty cell adds a
+        // container entry that end() of this range could then point to.
+        const unsigned int n = particles.n_particles_in_cell(cell);
+        if (n == 0)
+          continue;
+        const unsigned int here = grid.cartesian_index(cell);
+        auto               p    = particles.particles_in_cell(cell).begin();
+        for (unsigned int i = 0; i < n; ++i, ++p)
+          {
+            Point<dim>         xi;
+            const unsigned int there = grid.locate(p->get_location(), xi);
+            if (there == here)
+              p->set_reference_location(xi);
+            else if (there == BackgroundGrid<dim>::invalid)
+              {
+                if (policy == OutOfGridPolicy::stop)
+                  {
+                    if (failure.empty())
+                      failure = describe_leaving_point(p);
+                    continue;
+                  }
+                removals.push_back(p);
+                ++n_lost;
+              }
+            else if (grid.cell(there)->is_locally_owned())
+              {
+                // Copy first: the location and properties live in deal.II's
+                // property pool, which inserting may reallocate.
+                const auto       src = p->get_properties();
+                const Point<dim> x   = p->get_location();
+                std::copy(src.begin(), src.end(), buffer.begin());
+                particles.insert_particle(x,
+                                          xi,
+                                          p->get_id(),
+                                          grid.cell(there),
+                                          make_array_view(buffer));
+                removals.push_back(p);
+              }
+            else
+              off_rank = true;
+          }
+      }
+
+    raise_if_any_failed(failure, comm);
+
+    // Removing in reverse visiting order removes the highest index of each
+    // cell first, so the iterators still to be used stay valid.
+    for (auto p = removals.rbegin(); p != removals.rend(); ++p)
+      particles.remove_particle(*p);
+
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      off_rank = Utilities::MPI::logical_or(off_rank, comm);
+    if (off_rank)
+      particles.sort_particles_into_subdomains_and_cells();
+    else if (!removals.empty())
+      particles.update_cached_numbers();
+
+    return Utilities::MPI::sum(n_lost, comm);
+  }
+
+
+  template <int dim>
+  std::string
+  MaterialPoints<dim>::describe_leaving_point(
+    const typename Particles::ParticleHandler<dim>::particle_iterator &p) const
+  {
+    std::ostringstream s;
+    s << "material point " << p->get_id() << " of body "
+      << p->get_properties()[fields.body] << " left the grid at ("
+      << p->get_location() << ") with velocity ("
+      << Fields::vector<dim>(p->get_properties().data() + fields.velocity)
+      << "). Enlarge the grid, make its faces slip or fixed, or set "
+         "'Simulation/out of grid = remove'.";
+    return s.str();
+  }
+
+
+  template struct BodyParameters<1>;
+  template struct BodyParameters<2>;
+  template struct BodyParameters<3>;
+  template class MaterialPoints<1>;
+  template class MaterialPoints<2>;
+  template class MaterialPoints<3>;
+} // namespace mpm

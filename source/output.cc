@@ -1,0 +1,404 @@
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <mpm/output.h>
+#include <mpm/parameters.h>
+
+#include <filesystem>
+#include <iomanip>
+
+namespace mpm
+{
+  void
+  OutputParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("directory",
+                      "output",
+                      Patterns::Anything(),
+                      "Directory for particles.pvd, grid.pvd, statistics.csv.");
+    prm.declare_entry("interval",
+                      "0.01",
+                      Patterns::Anything(),
+                      "Simulated time between outputs, >= 0 (0: every step). "
+                      "Steps are shortened to land on output times.");
+    prm.declare_entry("fields",
+                      "velocity, displacement, stress, J, mass, volume, body",
+                      Patterns::MultipleSelection(
+                        "velocity|displacement|stress|J|mass|volume|body"),
+                      "Particle fields written to VTU. 'displacement' makes "
+                      "every point store its initial position.");
+    prm.declare_entry("grid output",
+                      "false",
+                      Patterns::Bool(),
+                      "Also write nodal mass and velocity on the grid (VTU).");
+    prm.declare_entry("progress interval",
+                      "2",
+                      Patterns::Anything(),
+                      "Wall-clock seconds between progress lines, >= 0.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    directory = prm.get("directory");
+    if (directory.empty())
+      throw InputError("Output/directory", "", "must not be empty");
+    interval    = Parse::bounded_double(prm, "Output", "interval", 0, 1e300);
+    fields      = Utilities::split_string_list(prm.get("fields"), ',');
+    grid_output = prm.get_bool("grid output");
+    progress_interval =
+      Parse::bounded_double(prm, "Output", "progress interval", 0, 1e300);
+    prm.leave_subsection();
+  }
+
+
+  bool
+  OutputParameters::writes(const std::string &name) const
+  {
+    return std::find(fields.begin(), fields.end(), name) != fields.end();
+  }
+
+
+
+  template <int dim>
+  Statistics<dim>
+  Statistics<dim>::compute(const MaterialPoints<dim> &points,
+                           const Tensor<1, dim>      &gravity,
+                           MPI_Comm                   comm)
+  {
+    const FieldLayout &l = points.layout();
+    Statistics         s;
+    for (const auto &p : points.handler())
+      {
+        const double        *q = p.get_properties().data();
+        const double         m = q[l.mass];
+        const Tensor<1, dim> v = Fields::vector<dim>(q + l.velocity);
+        const Point<dim>     x = p.get_location();
+        s.kinetic_energy += 0.5 * m * v.norm_square();
+        s.strain_energy +=
+          points.bodies()[q[l.body]].material->strain_energy(q, l);
+        s.gravitational_energy -= m * (gravity * x);
+        s.momentum += m * v;
+        if constexpr (dim == 2)
+          s.angular_momentum[0] += m * (x[0] * v[1] - x[1] * v[0]);
+        if constexpr (dim == 3)
+          s.angular_momentum += m * cross_product_3d(x, v);
+        s.mass += m;
+        s.momentum_scale += m * v.norm();
+        ++s.n_particles;
+      }
+    // One reduction for all sums.
+    std::vector<double> sums = {s.kinetic_energy,
+                                s.strain_energy,
+                                s.gravitational_energy,
+                                s.mass,
+                                s.momentum_scale,
+                                double(s.n_particles)};
+    for (unsigned int d = 0; d < dim; ++d)
+      sums.push_back(s.momentum[d]);
+    for (unsigned int d = 0; d < s.angular_momentum.dimension; ++d)
+      sums.push_back(s.angular_momentum[d]);
+    MPI_Allreduce(
+      MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM, comm);
+    s.kinetic_energy       = sums[0];
+    s.strain_energy        = sums[1];
+    s.gravitational_energy = sums[2];
+    s.mass                 = sums[3];
+    s.momentum_scale       = sums[4];
+    s.n_particles          = static_cast<types::particle_index>(sums[5]);
+    for (unsigned int d = 0; d < dim; ++d)
+      s.momentum[d] = sums[6 + d];
+    for (unsigned int d = 0; d < s.angular_momentum.dimension; ++d)
+      s.angular_momentum[d] = sums[6 + dim + d];
+    return s;
+  }
+
+
+
+  namespace
+  {
+    /// Material points as zero-dimensional patches for DataOutBase.
+    template <int dim>
+    class ParticlePatches : public DataOutInterface<0, dim>
+    {
+    public:
+      std::vector<DataOutBase::Patch<0, dim>> patches;
+      std::vector<std::string>                names;
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+        interpretation;
+
+      void
+      add_field(
+        const std::string &name,
+        const unsigned int n_components,
+        const DataComponentInterpretation::DataComponentInterpretation kind)
+      {
+        for (unsigned int c = 0; c < n_components; ++c)
+          {
+            names.push_back(name);
+            interpretation.push_back(kind);
+          }
+      }
+
+    private:
+      const std::vector<DataOutBase::Patch<0, dim>> &
+      get_patches() const override
+      {
+        return patches;
+      }
+      std::vector<std::string>
+      get_dataset_names() const override
+      {
+        return names;
+      }
+      std::vector<
+        std::tuple<unsigned int,
+                   unsigned int,
+                   std::string,
+                   DataComponentInterpretation::DataComponentInterpretation>>
+      get_nonscalar_data_ranges() const override
+      {
+        std::vector<
+          std::tuple<unsigned int,
+                     unsigned int,
+                     std::string,
+                     DataComponentInterpretation::DataComponentInterpretation>>
+          ranges;
+        for (unsigned int i = 0; i < names.size();)
+          {
+            unsigned int j = i;
+            while (j + 1 < names.size() && names[j + 1] == names[i])
+              ++j;
+            if (interpretation[i] !=
+                DataComponentInterpretation::component_is_scalar)
+              ranges.emplace_back(i, j, names[i], interpretation[i]);
+            i = j + 1;
+          }
+        return ranges;
+      }
+    };
+
+
+    /// Write a PVD record next to its files, atomically: a reader (or a
+    /// later crash) never sees a half-written file.
+    void
+    write_pvd(const std::string                                 &file,
+              const std::vector<std::pair<double, std::string>> &entries)
+    {
+      {
+        std::ofstream out(file + ".tmp");
+        DataOutBase::write_pvd_record(out, entries);
+      }
+      std::filesystem::rename(file + ".tmp", file);
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  Output<dim>::Output(const OutputParameters         &parameters,
+                      const BackgroundGrid<dim>      &grid,
+                      const MaterialPoints<dim>      &points,
+                      const TimeIntegrator<dim>      &integrator,
+                      const Tensor<1, dim>           &gravity,
+                      const std::vector<std::string> &extra_columns,
+                      MPI_Comm                        comm)
+    : prm(parameters)
+    , grid(grid)
+    , points(points)
+    , integrator(integrator)
+    , gravity(gravity)
+    , comm(comm)
+    , is_root(Utilities::MPI::this_mpi_process(comm) == 0)
+  {
+    if (is_root)
+      {
+        std::error_code error;
+        std::filesystem::create_directories(prm.directory, error);
+        statistics_file.open(prm.directory + "/statistics.csv");
+        if (error || !statistics_file)
+          throw InputError("Output/directory",
+                           prm.directory,
+                           "cannot be created or written");
+        const char *axis[] = {"x", "y", "z"};
+        statistics_file << "step,time,dt,kinetic_energy,strain_energy,"
+                           "gravitational_energy,total_energy";
+        for (unsigned int d = 0; d < dim; ++d)
+          statistics_file << ",momentum_" << axis[d];
+        if (dim == 2)
+          statistics_file << ",angular_momentum_z";
+        if (dim == 3)
+          statistics_file
+            << ",angular_momentum_x,angular_momentum_y,angular_momentum_z";
+        statistics_file << ",mass,particles,removed";
+        for (const auto &c : extra_columns)
+          statistics_file << "," << c;
+        statistics_file << ",wall_seconds\n";
+      }
+    MPI_Barrier(comm);
+  }
+
+
+  template <int dim>
+  void
+  Output<dim>::write(const Statistics<dim>     &s,
+                     const std::vector<double> &extra,
+                     const double               wall_seconds)
+  {
+    if (is_root)
+      {
+        auto &f = statistics_file;
+        f << integrator.step_number() << std::setprecision(12) << ","
+          << integrator.time() << "," << integrator.last_time_step() << ","
+          << s.kinetic_energy << "," << s.strain_energy << ","
+          << s.gravitational_energy << "," << s.total_energy();
+        for (unsigned int d = 0; d < dim; ++d)
+          f << "," << s.momentum[d];
+        if (dim > 1)
+          for (unsigned int d = 0; d < s.angular_momentum.dimension; ++d)
+            f << "," << s.angular_momentum[d];
+        f << "," << s.mass << "," << s.n_particles << ","
+          << integrator.n_removed_particles();
+        for (const double e : extra)
+          f << "," << e;
+        f << "," << std::setprecision(4) << wall_seconds << std::endl;
+      }
+    write_particles();
+    if (prm.grid_output)
+      write_grid();
+    ++counter;
+    next_time = (prm.interval > 0 ? counter * prm.interval : 0);
+  }
+
+
+  template <int dim>
+  void
+  Output<dim>::write_particles()
+  {
+    using DCI        = DataComponentInterpretation::DataComponentInterpretation;
+    const DCI vector = DataComponentInterpretation::component_is_part_of_vector;
+    const DCI tensor = DataComponentInterpretation::component_is_part_of_tensor;
+    const DCI scalar = DataComponentInterpretation::component_is_scalar;
+
+    const FieldLayout   &l = points.layout();
+    ParticlePatches<dim> out;
+    const bool           velocity     = prm.writes("velocity");
+    const bool           displacement = prm.writes("displacement");
+    const bool           stress       = prm.writes("stress");
+    const bool           J            = prm.writes("J");
+    const bool           mass         = prm.writes("mass");
+    const bool           volume       = prm.writes("volume");
+    const bool           body         = prm.writes("body");
+    if (velocity)
+      out.add_field("velocity", dim, vector);
+    if (displacement)
+      out.add_field("displacement", dim, vector);
+    if (stress)
+      out.add_field("stress", dim * dim, tensor);
+    if (J)
+      out.add_field("J", 1, scalar);
+    if (mass)
+      out.add_field("mass", 1, scalar);
+    if (volume)
+      out.add_field("volume", 1, scalar);
+    if (body)
+      out.add_field("body", 1, scalar);
+
+    out.patches.reserve(points.handler().n_locally_owned_particles());
+    for (const auto &p : points.handler())
+      {
+        const double              *q = p.get_properties().data();
+        DataOutBase::Patch<0, dim> patch;
+        patch.vertices[0] = p.get_location();
+        patch.patch_index = out.patches.size();
+        patch.data.reinit(out.names.size(), 1);
+        unsigned int c = 0;
+        auto put = [&](const double value) { patch.data(c++, 0) = value; };
+        if (velocity)
+          for (unsigned int d = 0; d < dim; ++d)
+            put(q[l.velocity + d]);
+        if (displacement)
+          for (unsigned int d = 0; d < dim; ++d)
+            put(p.get_location()[d] - q[l.initial_position + d]);
+        if (stress)
+          {
+            const auto s = Fields::symmetric<dim>(q + l.stress);
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                put(s[i][j]);
+          }
+        if (J)
+          put(q[l.volume] * points.bodies()[q[l.body]].density / q[l.mass]);
+        if (mass)
+          put(q[l.mass]);
+        if (volume)
+          put(q[l.volume]);
+        if (body)
+          put(q[l.body]);
+        out.patches.push_back(std::move(patch));
+      }
+
+    DataOutBase::VtkFlags flags;
+    flags.time  = integrator.time();
+    flags.cycle = integrator.step_number();
+    out.set_flags(flags);
+    const std::string name = out.write_vtu_with_pvtu_record(
+      prm.directory + "/", "particles", counter, comm, 5, 1);
+    if (is_root)
+      {
+        particle_files.emplace_back(integrator.time(), name);
+        write_pvd(prm.directory + "/particles.pvd", particle_files);
+      }
+  }
+
+
+  template <int dim>
+  void
+  Output<dim>::write_grid()
+  {
+    const auto partitioner = grid.make_partitioner(1);
+    std::vector<LinearAlgebra::distributed::Vector<double>> fields(
+      1 + dim, LinearAlgebra::distributed::Vector<double>(partitioner));
+    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+      {
+        fields[0].local_element(i) = integrator.nodal_mass(i);
+        for (unsigned int d = 0; d < dim; ++d)
+          fields[1 + d].local_element(i) = integrator.nodal_velocity(i, d);
+      }
+    DataOut<dim> data_out;
+    data_out.attach_dof_handler(grid.dof_handler());
+    const char *names[] = {"mass", "velocity_x", "velocity_y", "velocity_z"};
+    for (unsigned int c = 0; c < 1 + dim; ++c)
+      {
+        fields[c].update_ghost_values();
+        data_out.add_data_vector(fields[c], names[c]);
+      }
+    data_out.build_patches();
+    DataOutBase::VtkFlags flags;
+    flags.time = integrator.time();
+    data_out.set_flags(flags);
+    const std::string name = data_out.write_vtu_with_pvtu_record(
+      prm.directory + "/", "grid", counter, comm, 5, 1);
+    if (is_root)
+      {
+        grid_files.emplace_back(integrator.time(), name);
+        write_pvd(prm.directory + "/grid.pvd", grid_files);
+      }
+  }
+
+
+  template struct Statistics<1>;
+  template struct Statistics<2>;
+  template struct Statistics<3>;
+  template class Output<1>;
+  template class Output<2>;
+  template class Output<3>;
+} // namespace mpm

@@ -1,0 +1,199 @@
+#include <deal.II/base/utilities.h>
+
+#include <mpm/parameters.h>
+
+#include <sstream>
+
+namespace mpm
+{
+  InputError::InputError(const std::string &parameter,
+                         const std::string &value,
+                         const std::string &allowed)
+    : std::runtime_error("parameter '" + parameter + "' = '" + value +
+                         "': " + allowed)
+  {
+  }
+
+
+  void
+  raise_if_any_failed(const std::string &local_diagnosis, MPI_Comm comm)
+  {
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    if (n_ranks == 1)
+      {
+        if (!local_diagnosis.empty())
+          throw RunError(local_diagnosis);
+        return;
+      }
+    const unsigned int first =
+      Utilities::MPI::min(local_diagnosis.empty()
+                            ? n_ranks
+                            : Utilities::MPI::this_mpi_process(comm),
+                          comm);
+    if (first == n_ranks)
+      return;
+    throw RunError(Utilities::MPI::broadcast(comm, local_diagnosis, first));
+  }
+
+
+  namespace Parse
+  {
+    namespace
+    {
+      std::string
+      join(const std::string &path, const std::string &name)
+      {
+        return path.empty() ? name : path + "/" + name;
+      }
+
+
+      std::string
+      format(const double x)
+      {
+        std::ostringstream s;
+        s << x;
+        return s.str();
+      }
+    } // namespace
+
+
+    double
+    bounded_double(const ParameterHandler &prm,
+                   const std::string      &path,
+                   const std::string      &name,
+                   const double            lower,
+                   const double            upper,
+                   const bool              lower_open,
+                   const bool              upper_open)
+    {
+      const std::string text = prm.get(name);
+      double            value;
+      try
+        {
+          value = Utilities::string_to_double(text);
+        }
+      catch (...)
+        {
+          throw InputError(join(path, name), text, "must be a number");
+        }
+      const bool too_low  = lower_open ? !(value > lower) : !(value >= lower);
+      const bool too_high = upper_open ? !(value < upper) : !(value <= upper);
+      if (too_low || too_high || !std::isfinite(value))
+        throw InputError(join(path, name),
+                         text,
+                         std::string("allowed range is ") +
+                           (lower_open ? "(" : "[") + format(lower) + ", " +
+                           format(upper) + (upper_open ? ")" : "]"));
+      return value;
+    }
+
+
+    std::vector<double>
+    double_list(const ParameterHandler &prm,
+                const std::string      &path,
+                const std::string      &name,
+                const unsigned int      n)
+    {
+      const std::string   text    = prm.get(name);
+      const auto          entries = Utilities::split_string_list(text, ',');
+      std::vector<double> values;
+      try
+        {
+          for (const auto &e : entries)
+            values.push_back(Utilities::string_to_double(e));
+        }
+      catch (...)
+        {
+          throw InputError(join(path, name),
+                           text,
+                           "must be a comma-separated list of numbers");
+        }
+      for (const double v : values)
+        if (!std::isfinite(v))
+          throw InputError(join(path, name), text, "must be finite");
+      if (values.empty())
+        values.assign(n, 0.);
+      else if (values.size() == 1)
+        values.assign(n, values[0]);
+      else if (values.size() != n)
+        throw InputError(join(path, name),
+                         text,
+                         "expects " + std::to_string(n) +
+                           " comma-separated values (one per dimension) or "
+                           "a single value for all");
+      return values;
+    }
+
+
+    template <int dim>
+    Point<dim>
+    point(const ParameterHandler &prm,
+          const std::string      &path,
+          const std::string      &name)
+    {
+      const auto v = double_list(prm, path, name, dim);
+      Point<dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = v[d];
+      return p;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    vector(const ParameterHandler &prm,
+           const std::string      &path,
+           const std::string      &name)
+    {
+      return point<dim>(prm, path, name);
+    }
+
+
+    std::vector<std::string>
+    expression_list(const ParameterHandler &prm,
+                    const std::string      &name,
+                    const unsigned int      n,
+                    const std::string      &path)
+    {
+      const std::string text        = prm.get(name);
+      auto              expressions = Utilities::split_string_list(text, ';');
+      if (expressions.empty())
+        expressions.assign(n, "0");
+      else if (expressions.size() == 1)
+        expressions.assign(n, expressions[0]);
+      else if (expressions.size() != n)
+        throw InputError(join(path, name),
+                         text,
+                         "expects " + std::to_string(n) +
+                           " expressions separated by ';' (one per "
+                           "dimension) or a single expression for all");
+      return expressions;
+    }
+
+
+    template Point<1>
+    point<1>(const ParameterHandler &,
+             const std::string &,
+             const std::string &);
+    template Point<2>
+    point<2>(const ParameterHandler &,
+             const std::string &,
+             const std::string &);
+    template Point<3>
+    point<3>(const ParameterHandler &,
+             const std::string &,
+             const std::string &);
+    template Tensor<1, 1>
+    vector<1>(const ParameterHandler &,
+              const std::string &,
+              const std::string &);
+    template Tensor<1, 2>
+    vector<2>(const ParameterHandler &,
+              const std::string &,
+              const std::string &);
+    template Tensor<1, 3>
+    vector<3>(const ParameterHandler &,
+              const std::string &,
+              const std::string &);
+  } // namespace Parse
+} // namespace mpm

@@ -1,0 +1,198 @@
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+
+#include <mpm/parameters.h>
+#include <mpm/simulation.h>
+
+#include <iomanip>
+
+namespace mpm
+{
+  void
+  declare_scene_parameters(ParameterHandler &prm, const unsigned int n_bodies)
+  {
+    prm.enter_subsection("Simulation");
+    prm.declare_entry("dimension",
+                      "2",
+                      Patterns::Integer(1, 3),
+                      "Space dimension: 1 (serial only), 2 or 3.");
+    prm.leave_subsection();
+    IntegratorParameters<2>::declare_parameters(prm);
+    GridParameters<2>::declare_parameters(prm);
+    prm.enter_subsection("Bodies");
+    prm.declare_entry("number of bodies",
+                      "1",
+                      Patterns::Integer(1, 1000),
+                      "Number of bodies; body N is described in subsection "
+                      "'Body N', N = 0, 1, ...");
+    prm.leave_subsection();
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      BodyParameters<2>::declare_parameters(prm, b);
+    OutputParameters::declare_parameters(prm);
+    VerificationParameters::declare_parameters(prm);
+  }
+
+
+
+  template <int dim>
+  Simulation<dim>::Simulation(ParameterHandler &prm, MPI_Comm comm)
+    : comm(comm)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+    , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
+  {
+    grid_parameters.parse_parameters(prm);
+    integrator_parameters.parse_parameters(prm);
+    prm.enter_subsection("Bodies");
+    const unsigned int n_bodies = prm.get_integer("number of bodies");
+    prm.leave_subsection();
+    body_parameters.resize(n_bodies);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      body_parameters[b].parse_parameters(prm, b);
+    output_parameters.parse_parameters(prm);
+    verification_parameters.parse_parameters(prm);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::run()
+  {
+    Timer wall;
+    grid = std::make_unique<BackgroundGrid<dim>>(grid_parameters, comm);
+    const bool store_initial_position =
+      output_parameters.writes("displacement") ||
+      Verification<dim>::needs_initial_position(verification_parameters);
+    points = std::make_unique<MaterialPoints<dim>>(*grid,
+                                                   body_parameters,
+                                                   store_initial_position,
+                                                   comm);
+    points->generate();
+    integrator = std::make_unique<TimeIntegrator<dim>>(
+      integrator_parameters, *grid, *points, timer, comm);
+    verification = std::make_unique<Verification<dim>>(
+      verification_parameters, *points, integrator_parameters.gravity, comm);
+    output = std::make_unique<Output<dim>>(output_parameters,
+                                           *grid,
+                                           *points,
+                                           *integrator,
+                                           integrator_parameters.gravity,
+                                           verification->columns(),
+                                           comm);
+    print_scene_summary();
+    write_output(wall.wall_time());
+
+    const double end_time   = integrator_parameters.end_time;
+    double       last_print = 0;
+    const double start      = wall.wall_time();
+    try
+      {
+        while (integrator->time() < end_time * (1 - 1e-12))
+          {
+            double max_dt = end_time - integrator->time();
+            if (output_parameters.interval > 0)
+              max_dt =
+                std::min(max_dt,
+                         output->next_output_time() - integrator->time());
+            integrator->step(max_dt);
+            const double now = integrator->time();
+            if (output_parameters.interval == 0 ||
+                now >= output->next_output_time() * (1 - 1e-12) ||
+                now >= end_time * (1 - 1e-12))
+              write_output(wall.wall_time());
+            if (wall.wall_time() - last_print >=
+                output_parameters.progress_interval)
+              {
+                last_print = wall.wall_time();
+                print_progress(last_print - start);
+              }
+          }
+      }
+    catch (const RunError &e)
+      {
+        throw RunError(std::string(e.what()) + ". Output up to t = " +
+                       std::to_string(last_output_time) + " is in '" +
+                       output_parameters.directory + "/'.");
+      }
+    print_performance(wall.wall_time() - start);
+    verification->check(pcout.get_stream());
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::write_output(const double wall_seconds)
+  {
+    TimerOutput::Scope scope(timer, "output");
+    const auto         s =
+      Statistics<dim>::compute(*points, integrator_parameters.gravity, comm);
+    const auto extra = verification->evaluate(s, integrator->time());
+    if (integrator->time() == last_output_time)
+      return;
+    output->write(s, extra, wall_seconds);
+    last_output_time = integrator->time();
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::print_scene_summary() const
+  {
+    const auto &l = points->layout();
+    pcout << "dealii-mpm: " << dim << "D, "
+          << grid->triangulation().n_global_active_cells() << " cells, "
+          << points->handler().n_global_particles() << " material points in "
+          << body_parameters.size() << " bod"
+          << (body_parameters.size() == 1 ? "y" : "ies") << ", "
+          << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n"
+          << "  fields per point (" << l.n_properties << " doubles):";
+    for (const auto &[name, n] : l.description)
+      pcout << " " << name << "[" << n << "]";
+    pcout << std::endl;
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::print_progress(const double wall_seconds) const
+  {
+    const double t    = integrator->time();
+    const double end  = integrator_parameters.end_time;
+    const double done = t / end;
+    const double eta  = done > 0 ? wall_seconds * (1 - done) / done : 0;
+    pcout << "step " << std::setw(7) << integrator->step_number()
+          << "  t = " << std::setprecision(4) << std::setw(10) << t
+          << "  dt = " << std::setw(10) << integrator->last_time_step() << "  "
+          << std::fixed << std::setprecision(1) << std::setw(5) << 100 * done
+          << "%  ETA " << std::setprecision(0) << eta << " s"
+          << std::defaultfloat << std::setprecision(6) << std::endl;
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::print_performance(const double wall_seconds) const
+  {
+    timer.print_wall_time_statistics(comm);
+    const double particle_steps =
+      double(points->handler().n_global_particles()) *
+      integrator->step_number();
+    Utilities::System::MemoryStats memory; // of this rank
+    Utilities::System::get_memory_stats(memory);
+    const double peak_bytes =
+      Utilities::MPI::sum(double(memory.VmHWM) * 1024., comm);
+    pcout << "Finished " << integrator->step_number()
+          << " steps to t = " << integrator->time() << " in " << wall_seconds
+          << " s: "
+          << 1e9 * wall_seconds / std::max(particle_steps, 1.) *
+               Utilities::MPI::n_mpi_processes(comm)
+          << " ns per particle-step per rank, peak memory "
+          << peak_bytes /
+               std::max<double>(points->handler().n_global_particles(), 1)
+          << " bytes per particle (all ranks)\n";
+  }
+
+
+  template class Simulation<1>;
+  template class Simulation<2>;
+  template class Simulation<3>;
+} // namespace mpm

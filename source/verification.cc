@@ -1,0 +1,239 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/parameters.h>
+#include <mpm/verification.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace mpm
+{
+  void
+  VerificationParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Verification");
+    prm.declare_entry("exact solution",
+                      "none",
+                      Patterns::Selection(
+                        "none|vibrating bar|self-weight column"),
+                      "Known answer to compare with. 'vibrating bar': body 0 "
+                      "is a bar fixed at its lower x end, started in mode 1 "
+                      "with velocity amplitude 'amplitude'; the error is "
+                      "|v_com - v0 cos(wt)/(beta L)| / v0, maximum over "
+                      "output times. 'self-weight column': body 0 at rest "
+                      "under gravity on a slip floor; the error is the "
+                      "volume-weighted RMS of sigma_yy + rho g (H - y0) "
+                      "over rho g H, at the end.");
+    prm.declare_entry("amplitude",
+                      "0.1",
+                      Patterns::Anything(),
+                      "Vibrating bar: velocity amplitude v0, > 0.");
+    prm.declare_entry("error bound",
+                      "0",
+                      Patterns::Anything(),
+                      "Fail the run if the error exceeds this (0: no check).");
+    prm.declare_entry("energy drift bound",
+                      "0",
+                      Patterns::Anything(),
+                      "Fail the run if |E(t) - E(0)| / |E(0)| ever exceeds "
+                      "this (0: no check).");
+    prm.declare_entry("momentum drift bound",
+                      "0",
+                      Patterns::Anything(),
+                      "Fail the run if |p(t) - p(0)| / sum_p m_p |v_p(0)| "
+                      "ever exceeds this (0: no check).");
+    prm.leave_subsection();
+  }
+
+
+  void
+  VerificationParameters::parse_parameters(ParameterHandler &prm)
+  {
+    const std::string s = "Verification";
+    prm.enter_subsection(s);
+    const std::string e = prm.get("exact solution");
+    exact               = e == "none"            ? Exact::none
+                          : e == "vibrating bar" ? Exact::vibrating_bar
+                                                 : Exact::self_weight_column;
+    amplitude   = Parse::bounded_double(prm, s, "amplitude", 0, 1e300, true);
+    error_bound = Parse::bounded_double(prm, s, "error bound", 0, 1e300);
+    energy_drift_bound =
+      Parse::bounded_double(prm, s, "energy drift bound", 0, 1e300);
+    momentum_drift_bound =
+      Parse::bounded_double(prm, s, "momentum drift bound", 0, 1e300);
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  Verification<dim>::Verification(const VerificationParameters &parameters,
+                                  const MaterialPoints<dim>    &points,
+                                  const Tensor<1, dim>         &gravity,
+                                  MPI_Comm                      comm)
+    : prm(parameters)
+    , points(points)
+    , gravity(gravity)
+    , comm(comm)
+  {
+    const auto &body = points.bodies()[0];
+    if (prm.exact != VerificationParameters::Exact::none &&
+        body.shape != BodyParameters<dim>::Shape::box)
+      throw InputError("Verification/exact solution",
+                       "",
+                       "needs body 0 to be a box");
+    if (prm.exact == VerificationParameters::Exact::self_weight_column &&
+        gravity.norm() == 0)
+      throw InputError("Verification/exact solution",
+                       "self-weight column",
+                       "needs a non-zero 'Simulation/gravity'");
+  }
+
+
+  template <int dim>
+  bool
+  Verification<dim>::needs_initial_position(const VerificationParameters &p)
+  {
+    return p.exact == VerificationParameters::Exact::self_weight_column;
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  Verification<dim>::columns() const
+  {
+    std::vector<std::string> c;
+    if (prm.exact != VerificationParameters::Exact::none)
+      c.push_back("error");
+    c.push_back("energy_drift");
+    c.push_back("momentum_drift");
+    return c;
+  }
+
+
+  template <int dim>
+  double
+  Verification<dim>::exact_solution_error(const double t) const
+  {
+    const auto        &body = points.bodies()[0];
+    const FieldLayout &l    = points.layout();
+    if (prm.exact == VerificationParameters::Exact::vibrating_bar)
+      {
+        // Mode 1 of a bar fixed at x = 0 and free at x = L:
+        // v(x, t) = v0 sin(beta x) cos(omega t), beta = pi / (2L).
+        const double L = body.upper_corner[0] - body.lower_corner[0];
+        const double c =
+          std::sqrt(body.material->p_wave_modulus() / body.density);
+        const double beta = numbers::PI / (2 * L);
+        const double exact =
+          prm.amplitude * std::cos(beta * c * t) / (beta * L);
+        double mv = 0, m = 0;
+        for (const auto &p : points.handler())
+          {
+            const double *q = p.get_properties().data();
+            if (q[l.body] != 0)
+              continue;
+            mv += q[l.mass] * q[l.velocity];
+            m += q[l.mass];
+          }
+        mv = Utilities::MPI::sum(mv, comm);
+        m  = Utilities::MPI::sum(m, comm);
+        return std::abs(mv / m - exact) / prm.amplitude;
+      }
+
+    // Self-weight column: uniaxial stress sigma_yy = -rho g (H - y0).
+    const unsigned int up     = dim - 1;
+    const double       g      = gravity.norm();
+    const double       top    = body.upper_corner[up];
+    const double       height = top - body.lower_corner[up];
+    double             sum = 0, volume = 0;
+    for (const auto &p : points.handler())
+      {
+        const double *q = p.get_properties().data();
+        if (q[l.body] != 0)
+          continue;
+        const double y0    = q[l.initial_position + up];
+        const double exact = -body.density * g * (top - y0);
+        const double e = Fields::symmetric<dim>(q + l.stress)[up][up] - exact;
+        sum += q[l.volume] * e * e;
+        volume += q[l.volume];
+      }
+    sum    = Utilities::MPI::sum(sum, comm);
+    volume = Utilities::MPI::sum(volume, comm);
+    return std::sqrt(sum / volume) / (body.density * g * height);
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  Verification<dim>::evaluate(const Statistics<dim> &s, const double t)
+  {
+    if (!have_initial_state)
+      {
+        initial_energy         = s.total_energy();
+        initial_momentum       = s.momentum;
+        initial_momentum_scale = s.momentum_scale;
+        have_initial_state     = true;
+      }
+    std::vector<double> values;
+    if (prm.exact != VerificationParameters::Exact::none)
+      {
+        last_error = exact_solution_error(t);
+        max_error  = std::max(max_error, last_error);
+        values.push_back(last_error);
+      }
+    const double energy_drift =
+      initial_energy != 0
+        ? std::abs(s.total_energy() - initial_energy) / std::abs(initial_energy)
+        : 0;
+    const double momentum_drift =
+      initial_momentum_scale > 0
+        ? (s.momentum - initial_momentum).norm() / initial_momentum_scale
+        : 0;
+    max_energy_drift   = std::max(max_energy_drift, energy_drift);
+    max_momentum_drift = std::max(max_momentum_drift, momentum_drift);
+    values.push_back(energy_drift);
+    values.push_back(momentum_drift);
+    return values;
+  }
+
+
+  template <int dim>
+  void
+  Verification<dim>::check(std::ostream &out) const
+  {
+    std::ostringstream failures;
+    const bool         at_end =
+      prm.exact == VerificationParameters::Exact::self_weight_column;
+    const double error = at_end ? last_error : max_error;
+    if (prm.exact != VerificationParameters::Exact::none)
+      {
+        out << "Verification: error "
+            << (at_end ? "at the end" : "(max over time)") << " = " << error
+            << (prm.error_bound > 0
+                  ? " (bound " + std::to_string(prm.error_bound) + ")"
+                  : "")
+            << "\n";
+        if (prm.error_bound > 0 && !(error <= prm.error_bound))
+          failures << " error " << error << " > bound " << prm.error_bound
+                   << ";";
+      }
+    out << "Verification: max energy drift = " << max_energy_drift
+        << ", max momentum drift = " << max_momentum_drift << "\n";
+    if (prm.energy_drift_bound > 0 &&
+        !(max_energy_drift <= prm.energy_drift_bound))
+      failures << " energy drift " << max_energy_drift << " > bound "
+               << prm.energy_drift_bound << ";";
+    if (prm.momentum_drift_bound > 0 &&
+        !(max_momentum_drift <= prm.momentum_drift_bound))
+      failures << " momentum drift " << max_momentum_drift << " > bound "
+               << prm.momentum_drift_bound << ";";
+    if (!failures.str().empty())
+      throw RunError("verification failed:" + failures.str());
+  }
+
+
+  template class Verification<1>;
+  template class Verification<2>;
+  template class Verification<3>;
+} // namespace mpm
