@@ -69,31 +69,6 @@ namespace
   }
 
 
-  /// Set "A/B/name" = value; throws if the entry is not declared or the
-  /// value does not fit its pattern.
-  void
-  apply_override(ParameterHandler  &prm,
-                 const std::string &path,
-                 const std::string &value)
-  {
-    const auto parts = Utilities::split_string_list(path, '/');
-    for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-      prm.enter_subsection(parts[i]);
-    try
-      {
-        prm.set(parts.back(), value);
-      }
-    catch (...)
-      {
-        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-          prm.leave_subsection();
-        throw;
-      }
-    for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-      prm.leave_subsection();
-  }
-
-
   /// deal.II's own message for a malformed file or value, on one line.
   std::string
   one_line(const ExceptionBase &e)
@@ -102,6 +77,41 @@ namespace
     e.print_info(s);
     std::string text = std::regex_replace(s.str(), std::regex("\\s+"), " ");
     return Utilities::trim(text);
+  }
+
+
+  /// Set "A/B/name" = value; an undeclared entry or a value that does not
+  /// fit the entry's pattern is an InputError naming the entry.
+  void
+  apply_override(ParameterHandler  &prm,
+                 const std::string &path,
+                 const std::string &value)
+  {
+    const auto   parts = Utilities::split_string_list(path, '/');
+    unsigned int depth = 0;
+    std::string  problem;
+    try
+      {
+        for (; depth + 1 < parts.size(); ++depth)
+          prm.enter_subsection(parts[depth]);
+        prm.get(parts.back()); // throws if there is no such entry
+        try
+          {
+            prm.set(parts.back(), value);
+          }
+        catch (const ExceptionBase &e)
+          {
+            problem = one_line(e);
+          }
+      }
+    catch (const ExceptionBase &)
+      {
+        problem = "no such parameter (see dealii-mpm --print-parameters)";
+      }
+    for (unsigned int i = 0; i < depth; ++i)
+      prm.leave_subsection();
+    if (!problem.empty())
+      throw mpm::InputError(path, value, problem);
   }
 
 

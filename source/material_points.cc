@@ -65,8 +65,10 @@ namespace mpm
     prm.declare_entry("material",
                       "linear elastic",
                       Patterns::Selection(MaterialRegistry::names()),
-                      "Constitutive model; its parameters are read from the "
-                      "subsection of the same name.");
+                      "Constitutive model, one of: " +
+                        MaterialRegistry::names() +
+                        ". Its parameters are read from the subsection of the "
+                        "same name.");
     MaterialRegistry::declare_parameters(prm);
     prm.leave_subsection();
     prm.leave_subsection();
@@ -358,11 +360,14 @@ namespace mpm
     for (auto p = removals.rbegin(); p != removals.rend(); ++p)
       particles.remove_particle(*p);
 
+    // Both calls below are collective (they count particles over all
+    // ranks), so every rank must take the same branch.
+    int changes = (off_rank ? 1 : 0) | (removals.empty() ? 0 : 2);
     if (Utilities::MPI::n_mpi_processes(comm) > 1)
-      off_rank = Utilities::MPI::logical_or(off_rank, comm);
-    if (off_rank)
+      MPI_Allreduce(MPI_IN_PLACE, &changes, 1, MPI_INT, MPI_BOR, comm);
+    if (changes & 1)
       particles.sort_particles_into_subdomains_and_cells();
-    else if (!removals.empty())
+    else if (changes & 2)
       particles.update_cached_numbers();
 
     return Utilities::MPI::sum(n_lost, comm);

@@ -26,16 +26,20 @@ namespace mpm
                       Patterns::Anything(),
                       "Simulated time between outputs, >= 0 (0: every step). "
                       "Steps are shortened to land on output times.");
-    prm.declare_entry("fields",
-                      "velocity, displacement, stress, J, mass, volume, body",
-                      Patterns::MultipleSelection(
-                        "velocity|displacement|stress|J|mass|volume|body"),
-                      "Particle fields written to VTU. 'displacement' makes "
-                      "every point store its initial position.");
-    prm.declare_entry("grid output",
-                      "false",
-                      Patterns::Bool(),
-                      "Also write nodal mass and velocity on the grid (VTU).");
+    prm.declare_entry(
+      "fields",
+      "velocity, displacement, stress, J, mass, volume, body",
+      Patterns::MultipleSelection(
+        "velocity|displacement|stress|J|mass|volume|body"),
+      "Particle fields written to VTU, any of: velocity, "
+      "displacement, stress, J, mass, volume, body. 'displacement' makes "
+      "every point store its initial position.");
+    prm.declare_entry(
+      "grid output",
+      "false",
+      Patterns::Bool(),
+      "true or false: also write nodal mass and velocity on the "
+      "grid (VTU, grid.pvd).");
     prm.declare_entry("progress interval",
                       "2",
                       Patterns::Anything(),

@@ -79,11 +79,16 @@ namespace mpm
       const bool too_low  = lower_open ? !(value > lower) : !(value >= lower);
       const bool too_high = upper_open ? !(value < upper) : !(value <= upper);
       if (too_low || too_high || !std::isfinite(value))
-        throw InputError(join(path, name),
-                         text,
-                         std::string("allowed range is ") +
-                           (lower_open ? "(" : "[") + format(lower) + ", " +
-                           format(upper) + (upper_open ? ")" : "]"));
+        {
+          // Half-open ranges read better as an inequality.
+          const std::string allowed =
+            upper >= 1e300 ? std::string("must be ") +
+                               (lower_open ? "> " : ">= ") + format(lower)
+                           : std::string("allowed range is ") +
+                               (lower_open ? "(" : "[") + format(lower) + ", " +
+                               format(upper) + (upper_open ? ")" : "]");
+          throw InputError(join(path, name), text, allowed);
+        }
       return value;
     }
 

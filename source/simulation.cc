@@ -5,6 +5,7 @@
 #include <mpm/simulation.h>
 
 #include <iomanip>
+#include <sstream>
 
 namespace mpm
 {
@@ -38,7 +39,6 @@ namespace mpm
   Simulation<dim>::Simulation(ParameterHandler &prm, MPI_Comm comm)
     : comm(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
-    , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
   {
     grid_parameters.parse_parameters(prm);
     integrator_parameters.parse_parameters(prm);
@@ -58,7 +58,13 @@ namespace mpm
   Simulation<dim>::run()
   {
     Timer wall;
-    grid = std::make_unique<BackgroundGrid<dim>>(grid_parameters, comm);
+    // Made here rather than in the constructor: a TimerOutput that is
+    // destroyed while an input error unwinds the stack prints a warning.
+    timer = std::make_unique<TimerOutput>(comm,
+                                          pcout,
+                                          TimerOutput::never,
+                                          TimerOutput::wall_times);
+    grid  = std::make_unique<BackgroundGrid<dim>>(grid_parameters, comm);
     const bool store_initial_position =
       output_parameters.writes("displacement") ||
       Verification<dim>::needs_initial_position(verification_parameters);
@@ -68,7 +74,7 @@ namespace mpm
                                                    comm);
     points->generate();
     integrator = std::make_unique<TimeIntegrator<dim>>(
-      integrator_parameters, *grid, *points, timer, comm);
+      integrator_parameters, *grid, *points, *timer, comm);
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
     output = std::make_unique<Output<dim>>(output_parameters,
@@ -109,12 +115,14 @@ namespace mpm
       }
     catch (const RunError &e)
       {
-        throw RunError(std::string(e.what()) + ". Output up to t = " +
-                       std::to_string(last_output_time) + " is in '" +
-                       output_parameters.directory + "/'.");
+        std::ostringstream message;
+        message << e.what() << (std::string(e.what()).back() == '.' ? "" : ".")
+                << " Output up to t = " << last_output_time << " is in '"
+                << output_parameters.directory << "/'.";
+        throw RunError(message.str());
       }
     print_performance(wall.wall_time() - start);
-    verification->check(pcout.get_stream());
+    verification->check(pcout);
   }
 
 
@@ -122,7 +130,7 @@ namespace mpm
   void
   Simulation<dim>::write_output(const double wall_seconds)
   {
-    TimerOutput::Scope scope(timer, "output");
+    TimerOutput::Scope scope(*timer, "output");
     const auto         s =
       Statistics<dim>::compute(*points, integrator_parameters.gravity, comm);
     const auto extra = verification->evaluate(s, integrator->time());
@@ -172,7 +180,7 @@ namespace mpm
   void
   Simulation<dim>::print_performance(const double wall_seconds) const
   {
-    timer.print_wall_time_statistics(comm);
+    timer->print_wall_time_statistics(comm);
     const double particle_steps =
       double(points->handler().n_global_particles()) *
       integrator->step_number();

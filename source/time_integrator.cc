@@ -49,7 +49,7 @@ namespace mpm
                       ">= 0: grid velocities obey dv/dt = f/m - c v (as in "
                       "cl-mpm), for quasi-static problems.");
     prm.declare_entry("small mass fraction",
-                      "1e-2",
+                      "0.25",
                       Patterns::Anything(),
                       "Nodes whose mass is below this fraction of the "
                       "smallest point mass are left out of the velocity "
@@ -158,12 +158,18 @@ namespace mpm
       {
         const double limit = stable_time_step();
         if (prm.fixed_time_step > limit)
-          throw InputError("Simulation/time step",
-                           std::to_string(prm.fixed_time_step),
-                           "exceeds the stability limit CFL number * h / "
-                           "max(c_p + |v_p|) = " +
-                             std::to_string(limit) +
-                             " of the initial state; use a smaller step or 0");
+          {
+            std::ostringstream allowed;
+            allowed << "exceeds the stability limit CFL number * h / "
+                       "max(c_p + |v_p|) = "
+                    << limit
+                    << " of the initial state; use a smaller step or 0";
+            std::ostringstream value;
+            value << prm.fixed_time_step;
+            throw InputError("Simulation/time step",
+                             value.str(),
+                             allowed.str());
+          }
       }
   }
 

@@ -200,7 +200,7 @@ namespace mpm
 
   template <int dim>
   void
-  Verification<dim>::check(std::ostream &out) const
+  Verification<dim>::check(ConditionalOStream &out) const
   {
     std::ostringstream failures;
     const bool         at_end =

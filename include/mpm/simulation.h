@@ -51,7 +51,7 @@ namespace mpm
     OutputParameters                 output_parameters;
     VerificationParameters           verification_parameters;
 
-    TimerOutput                          timer;
+    std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
     std::unique_ptr<BackgroundGrid<dim>> grid;
     std::unique_ptr<MaterialPoints<dim>> points;
     std::unique_ptr<TimeIntegrator<dim>> integrator;

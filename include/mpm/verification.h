@@ -1,6 +1,7 @@
 #ifndef mpm_verification_h
 #define mpm_verification_h
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/material_points.h>
@@ -59,7 +60,7 @@ namespace mpm
 
     /// Throw RunError if a bound was exceeded; print what was measured.
     void
-    check(std::ostream &out) const;
+    check(ConditionalOStream &out) const;
 
   private:
     double

@@ -1,0 +1,86 @@
+# Runs one test scene and checks what it must:
+#   -DEXE=dealii-mpm -DPRM=scene.prm -DWORKDIR=dir [-DNP=ranks -DMPIEXEC=mpirun]
+#   [-DARGS="a;b"]            extra command-line arguments
+#   [-DEXPECT_EXIT=n]         exit code the run must have (default 0)
+#   [-DEXPECT_ERROR=regex]    stderr must match (bad input / stopped runs)
+#   [-DREFERENCE=file.output] statistics.csv without the wall-time column
+#                             must match this reviewed file (numdiff)
+#   [-DSTDOUT_REFERENCE=file] stdout must match this reviewed file exactly
+#   [-DEXPECT_FILES="a;b"]    files that must exist in WORKDIR/output
+#   [-DNUMDIFF=numdiff -DRELTOL=1e-8 -DABSTOL=1e-10]
+file(REMOVE_RECURSE ${WORKDIR})
+file(MAKE_DIRECTORY ${WORKDIR})
+set(command ${EXE} ${PRM} -s "Output/directory=${WORKDIR}/output" -s "Output/progress interval=1e9" ${ARGS})
+if(NP AND NP GREATER 1)
+  set(command ${MPIEXEC} -np ${NP} ${command})
+endif()
+execute_process(COMMAND ${command}
+  WORKING_DIRECTORY ${WORKDIR}
+  RESULT_VARIABLE exit_code
+  OUTPUT_VARIABLE out
+  ERROR_VARIABLE err)
+file(WRITE ${WORKDIR}/stdout "${out}")
+file(WRITE ${WORKDIR}/stderr "${err}")
+if(NOT DEFINED EXPECT_EXIT)
+  set(EXPECT_EXIT 0)
+endif()
+if(NOT "${exit_code}" STREQUAL "${EXPECT_EXIT}")
+  message(FATAL_ERROR "exit code ${exit_code}, expected ${EXPECT_EXIT}\nstdout:\n${out}\nstderr:\n${err}")
+endif()
+if(DEFINED EXPECT_ERROR)
+  if(NOT err MATCHES "${EXPECT_ERROR}")
+    message(FATAL_ERROR "stderr does not match '${EXPECT_ERROR}':\n${err}")
+  endif()
+  # A user mistake gets one line, never a deal.II stack trace. (Under
+  # mpirun, mpirun adds its own report of the non-zero exit.)
+  if(err MATCHES "Stacktrace|An error occurred in line|TimerOutput objects")
+    message(FATAL_ERROR "stderr shows more than the diagnosis:\n${err}")
+  endif()
+  if(NOT (NP AND NP GREATER 1))
+    string(STRIP "${err}" stripped)
+    if(stripped MATCHES "\n")
+      message(FATAL_ERROR "stderr has more than one line:\n${err}")
+    endif()
+  endif()
+endif()
+foreach(f ${EXPECT_FILES})
+  if(NOT EXISTS ${WORKDIR}/output/${f})
+    message(FATAL_ERROR "expected output file ${f} is missing")
+  endif()
+endforeach()
+if(DEFINED STDOUT_REFERENCE)
+  file(READ ${STDOUT_REFERENCE} expected)
+  if(NOT out STREQUAL expected)
+    file(WRITE ${WORKDIR}/stdout.output ${out})
+    message(FATAL_ERROR "stdout differs from ${STDOUT_REFERENCE}; see ${WORKDIR}/stdout.output")
+  endif()
+endif()
+# The statistics without the wall-time column: what a reference holds.
+# (A new reference is this file, reviewed, copied to tests/<name>.output.)
+if(EXISTS ${WORKDIR}/output/statistics.csv)
+  file(STRINGS ${WORKDIR}/output/statistics.csv lines)
+  set(result "")
+  foreach(line ${lines})
+    string(REGEX REPLACE ",[^,]*$" "" line "${line}")
+    string(REPLACE "," " " line "${line}")
+    string(APPEND result "${line}\n")
+  endforeach()
+  file(WRITE ${WORKDIR}/statistics.output "${result}")
+endif()
+if(DEFINED REFERENCE)
+  if(NOT RELTOL)
+    set(RELTOL 1e-8)
+  endif()
+  if(NOT ABSTOL)
+    set(ABSTOL 1e-10)
+  endif()
+  execute_process(COMMAND ${NUMDIFF} -q -s " \n" -r ${RELTOL} -a ${ABSTOL}
+      ${REFERENCE} ${WORKDIR}/statistics.output
+    RESULT_VARIABLE diff_code)
+  if(NOT diff_code EQUAL 0)
+    execute_process(COMMAND ${NUMDIFF} -s " \n" -r ${RELTOL} -a ${ABSTOL}
+      ${REFERENCE} ${WORKDIR}/statistics.output OUTPUT_VARIABLE diff)
+    message(FATAL_ERROR "statistics differ from ${REFERENCE}:\n${diff}")
+  endif()
+endif()
+message(STATUS "passed")

@@ -1,0 +1,74 @@
+# The test list. Each scene asserts its own accuracy bounds (Verification
+# section); reviewed statistics (<name>.output, compared with numdiff) pin
+# the whole history where one exists.
+
+# 1. Vibrating bar (1D): centre-of-mass velocity within 1.5% of v0 of the
+#    exact mode over one period; energy within 2.5%.
+mpm_test(vibrating_bar)
+mpm_test(vibrating_bar_neohookean PRM vibrating_bar.prm
+  ARGS -s "Bodies/Body 0/material=neo-Hookean"
+       -s "Bodies/Body 0/neo-Hookean/Young's modulus=100"
+       -s "Bodies/Body 0/neo-Hookean/Poisson's ratio=0")
+
+# 2. Block settling under gravity: sigma_yy against -rho g (H - y0).
+mpm_test(block_settling)
+#    At h = 1/32 plain USL needs the small-mass guard to stay finite ...
+mpm_test(block_settling_h32 PRM block_settling.prm
+  ARGS -s "Grid/cells=32" -s "Verification/error bound=0.2")
+#    ... and without it the run stops with a diagnosis, keeping the output
+#    written before (also the test of the NaN / det F <= 0 class).
+mpm_test(block_settling_h32_unguarded PRM block_settling.prm EXIT 2
+  ARGS -s "Grid/cells=32" -s "Simulation/small mass fraction=0"
+       -s "Output/interval=0.01"
+  ERROR "run stopped: step [0-9]+, t = [0-9.e-]+: material point [0-9]+ of body 0 at \\([-0-9. e]+\\) (would invert: det|has a non-finite).*Output up to t = 0.0[1-9]"
+  FILES statistics.csv particles.pvd particles_00001.pvtu)
+
+# 3. Two disks (Sulsky 1994): momentum to round-off, bounded energy loss,
+#    for each update scheme.
+mpm_test(two_disks)
+mpm_test(two_disks_usf PRM two_disks.prm
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08")
+mpm_test(two_disks_musl PRM two_disks.prm
+  ARGS -s "Simulation/update scheme=MUSL" -s "Verification/energy drift bound=0.1")
+
+# 4. The same scene on 2 MPI ranks gives the 1-rank statistics.
+mpm_test(two_disks_mpi2 PRM two_disks.prm NP 2 REFERENCE two_disks.output RELTOL 1e-7)
+mpm_test(block_3d_mpi2 PRM block_3d.prm NP 2 REFERENCE block_3d.output RELTOL 1e-7)
+
+# 5. Bad input: one line naming the parameter and what is allowed.
+set(base two_disks.prm)
+mpm_test(bad_density PRM ${base} EXIT 1 ARGS -s "Bodies/Body 0/density=-1000"
+  ERROR "input error: parameter 'Bodies/Body 0/density' = '-1000': must be > 0")
+mpm_test(bad_youngs_modulus PRM ${base} EXIT 1
+  ARGS -s "Bodies/Body 1/linear elastic/Young's modulus=-5"
+  ERROR "parameter 'Bodies/Body 1/linear elastic/Young's modulus' = '-5': must be > 0")
+mpm_test(bad_poisson_ratio PRM ${base} EXIT 1
+  ARGS -s "Bodies/Body 0/linear elastic/Poisson's ratio=0.5"
+  ERROR "parameter 'Bodies/Body 0/linear elastic/Poisson's ratio' = '0.5': allowed range is \\(-1, 0.5\\)")
+mpm_test(bad_body_outside_grid PRM ${base} EXIT 1
+  ARGS -s "Bodies/Body 1/center=0.9"
+  ERROR "parameter 'Bodies/Body 1/radius'.*the body must lie inside the grid box")
+mpm_test(bad_unknown_material PRM ${base} EXIT 1
+  ARGS -s "Bodies/Body 0/material=granite"
+  ERROR "input error: .*granite.*(linear elastic|pattern)")
+mpm_test(bad_vector_length PRM ${base} EXIT 1 ARGS -s "Simulation/gravity=0, -9.81, 0"
+  ERROR "parameter 'Simulation/gravity' = '0, -9.81, 0': expects 2 comma-separated values")
+mpm_test(bad_unknown_parameter PRM ${base} EXIT 1 ARGS -s "Grid/cellz=3"
+  ERROR "input error: .*cellz")
+mpm_test(bad_malformed_file PRM malformed.prm EXIT 1
+  ERROR "input error: .*[Ll]ine <?4>?")
+mpm_test(bad_missing_file PRM does_not_exist.prm EXIT 1
+  ERROR "input error: .*does_not_exist.prm")
+mpm_test(bad_fixed_time_step PRM ${base} EXIT 1 ARGS -s "Simulation/time step=0.1"
+  ERROR "parameter 'Simulation/time step' = '0.1.*exceeds the stability limit")
+mpm_test(leaving_grid_stop PRM leaving_grid.prm EXIT 2
+  ERROR "run stopped: material point [0-9]+ of body 0 left the grid at \\(1\\.0[0-9]* [0-9.]+\\)"
+  FILES statistics.csv particles.pvd)
+mpm_test(leaving_grid_remove PRM leaving_grid.prm ARGS -s "Simulation/out of grid=remove")
+
+# 6. 3D block dropped in a box: reviewed statistics.
+mpm_test(block_3d)
+
+# The parameter reference, reviewed: a change to any name, default or
+# documentation shows up here.
+mpm_test(print_parameters ARGS --print-parameters STDOUT print_parameters.output)
