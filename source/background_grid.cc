@@ -7,6 +7,8 @@
 #include <deal.II/grid/grid_generator.h>
 
 #include <mpm/background_grid.h>
+
+#include <algorithm>
 #include <mpm/parameters.h>
 
 namespace mpm
@@ -102,6 +104,10 @@ namespace mpm
     else
       tria = std::make_unique<parallel::distributed::Triangulation<dim>>(comm);
 
+    // Every cell a coarse cell: then deal.II's active cells, and so the
+    // particles stored per cell, are in lexicographic order, the order of
+    // the particle loops. (A coarse mesh refined globally stores cells in
+    // z-order and made the loops 1.7x slower, for 10% less memory.)
     std::vector<unsigned int> repetitions(prm.n_cells.begin(),
                                           prm.n_cells.end());
     // colorize: face f of the box gets boundary id f (x-, x+, y-, ...).

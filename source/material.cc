@@ -35,6 +35,44 @@ namespace mpm
     };
 
 
+    /**
+     * The Hughes-Winget incremental rotation Q = (I - A)^{-1} (I + A) for
+     * the half-step spin A = dt/2 (L - L^T)/2, in closed form (the Cayley
+     * transform of a skew tensor): Q = I + 2/(1 + |a|^2) (A + A^2), with
+     * |a|^2 = A:A/2. Exactly orthogonal for any step.
+     */
+    template <int dim>
+    inline Tensor<2, dim>
+    hughes_winget_rotation(const Tensor<2, dim> &L, const double dt)
+    {
+      const Tensor<2, dim> A  = (0.25 * dt) * (L - transpose(L));
+      const double         a2 = 0.5 * scalar_product(A, A);
+      Tensor<2, dim>       Q  = (2. / (1. + a2)) * (A + A * A);
+      for (unsigned int d = 0; d < dim; ++d)
+        Q[d][d] += 1.;
+      return Q;
+    }
+
+
+    /// Q s Q^T for a symmetric s.
+    template <int dim>
+    inline SymmetricTensor<2, dim>
+    rotate(const SymmetricTensor<2, dim> &s, const Tensor<2, dim> &Q)
+    {
+      const Tensor<2, dim>    QS = Q * s;
+      SymmetricTensor<2, dim> r;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          {
+            double v = 0;
+            for (unsigned int k = 0; k < dim; ++k)
+              v += QS[i][k] * Q[j][k];
+            r[i][j] = v;
+          }
+      return r;
+    }
+
+
     /// Lame constants from E and nu, read and checked in one place.
     struct ElasticConstants
     {
@@ -105,13 +143,7 @@ namespace mpm
         SymmetricTensor<2, dim>       sigma =
           Fields::symmetric<dim>(p + layout.stress);
         if constexpr (dim > 1)
-          {
-            const Tensor<2, dim> half_W = 0.25 * dt * (L - transpose(L));
-            const Tensor<2, dim> I      = unit_symmetric_tensor<dim>();
-            const Tensor<2, dim> Q      = invert(I - half_W) * (I + half_W);
-            sigma                       = symmetrize(
-              Tensor<2, dim>(Q * Tensor<2, dim>(sigma) * transpose(Q)));
-          }
+          sigma = rotate(sigma, hughes_winget_rotation(L, dt));
         sigma += dt * (c.lambda * trace(D) * unit_symmetric_tensor<dim>() +
                        2. * c.mu * D);
         Fields::store(sigma, p + layout.stress);

@@ -306,17 +306,15 @@ namespace mpm
     bool                  off_rank = false;
     std::vector<double>   buffer(fields.n_properties);
 
-    for (const auto &cell : grid.triangulation().active_cell_iterators())
+    for (const unsigned int here : grid.locally_owned_cells())
       {
-        if (!cell->is_locally_owned())
-          continue;
+        const auto &cell = grid.cell(here);
         // Count, not end(): inserting into a previously empty cell adds a
         // container entry that end() of this range could then point to.
         const unsigned int n = particles.n_particles_in_cell(cell);
         if (n == 0)
           continue;
-        const unsigned int here = grid.cartesian_index(cell);
-        auto               p    = particles.particles_in_cell(cell).begin();
+        auto p = particles.particles_in_cell(cell).begin();
         for (unsigned int i = 0; i < n; ++i, ++p)
           {
             Point<dim>         xi;

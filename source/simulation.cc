@@ -4,6 +4,7 @@
 #include <mpm/parameters.h>
 #include <mpm/simulation.h>
 
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -90,6 +91,8 @@ namespace mpm
     const double end_time   = integrator_parameters.end_time;
     double       last_print = 0;
     const double start      = wall.wall_time();
+    Timer        stepping; // time in steps only: the cost per particle-step
+    stepping.stop();
     try
       {
         while (integrator->time() < end_time * (1 - 1e-12))
@@ -99,7 +102,9 @@ namespace mpm
               max_dt =
                 std::min(max_dt,
                          output->next_output_time() - integrator->time());
+            stepping.start();
             integrator->step(max_dt);
+            stepping.stop();
             const double now = integrator->time();
             if (output_parameters.interval == 0 ||
                 now >= output->next_output_time() * (1 - 1e-12) ||
@@ -121,7 +126,7 @@ namespace mpm
                 << output_parameters.directory << "/'.";
         throw RunError(message.str());
       }
-    print_performance(wall.wall_time() - start);
+    print_performance(wall.wall_time() - start, stepping.wall_time());
     verification->check(pcout);
   }
 
@@ -178,25 +183,44 @@ namespace mpm
 
   template <int dim>
   void
-  Simulation<dim>::print_performance(const double wall_seconds) const
+  Simulation<dim>::print_performance(const double wall_seconds,
+                                     const double step_seconds) const
   {
     timer->print_wall_time_statistics(comm);
     const double particle_steps =
       double(points->handler().n_global_particles()) *
       integrator->step_number();
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    // Cost per particle-step per rank: rank-seconds / particle-steps.
+    auto ns = [&](const double seconds) {
+      return 1e9 * seconds * n_ranks / std::max(particle_steps, 1.);
+    };
     Utilities::System::MemoryStats memory; // of this rank
     Utilities::System::get_memory_stats(memory);
     const double peak_bytes =
       Utilities::MPI::sum(double(memory.VmHWM) * 1024., comm);
+    const double bytes_per_particle =
+      peak_bytes / std::max<double>(points->handler().n_global_particles(), 1);
     pcout << "Finished " << integrator->step_number()
           << " steps to t = " << integrator->time() << " in " << wall_seconds
-          << " s: "
-          << 1e9 * wall_seconds / std::max(particle_steps, 1.) *
-               Utilities::MPI::n_mpi_processes(comm)
+          << " s (" << step_seconds << " s in steps): " << ns(step_seconds)
           << " ns per particle-step per rank, peak memory "
-          << peak_bytes /
-               std::max<double>(points->handler().n_global_particles(), 1)
-          << " bytes per particle (all ranks)\n";
+          << bytes_per_particle << " bytes per particle (all ranks)\n";
+
+    // The same, per phase, machine-readable (benchmarks/ collect it).
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::ofstream f(output_parameters.directory + "/timing.csv");
+        f << "phase,seconds,ns_per_particle_step\n";
+        for (const auto &[phase, seconds] :
+             timer->get_summary_data(TimerOutput::total_wall_time))
+          f << phase << "," << seconds << "," << ns(seconds) << "\n";
+        f << "steps," << step_seconds << "," << ns(step_seconds) << "\n";
+        f << "particles," << points->handler().n_global_particles() << ",\n";
+        f << "time steps," << integrator->step_number() << ",\n";
+        f << "ranks," << n_ranks << ",\n";
+        f << "peak bytes per particle," << bytes_per_particle << ",\n";
+      }
   }
 
 

@@ -41,7 +41,8 @@ namespace mpm
     void
     print_progress(const double wall_seconds) const;
     void
-    print_performance(const double wall_seconds) const;
+    print_performance(const double wall_seconds,
+                      const double step_seconds) const;
 
     MPI_Comm                         comm;
     ConditionalOStream               pcout;
