@@ -104,10 +104,11 @@ namespace mpm
     else
       tria = std::make_unique<parallel::distributed::Triangulation<dim>>(comm);
 
-    // Every cell a coarse cell: then deal.II's active cells, and so the
-    // particles stored per cell, are in lexicographic order, the order of
-    // the particle loops. (A coarse mesh refined globally stores cells in
-    // z-order and made the loops 1.7x slower, for 10% less memory.)
+    // Every cell a coarse cell. A coarse mesh refined globally would save
+    // memory (p4est keeps every coarse cell on every rank: 12% less peak
+    // memory on 1 rank, 28% on 2, for a 512^2 grid), but deal.II's particle
+    // loops then ran 1.7-1.9x slower, even a loop that touches no grid
+    // data; see doc/performance.md.
     std::vector<unsigned int> repetitions(prm.n_cells.begin(),
                                           prm.n_cells.end());
     // colorize: face f of the box gets boundary id f (x-, x+, y-, ...).
