@@ -353,6 +353,9 @@ namespace mpm
     DataOutBase::VtkFlags flags;
     flags.time  = integrator.time();
     flags.cycle = integrator.step_number();
+    // deal.II's default, best_compression, made output 10x slower than a
+    // step of the whole scene for a 20% smaller file.
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
     out.set_flags(flags);
     const std::string name = out.write_vtu_with_pvtu_record(
       prm.directory + "/", "particles", counter, comm, 5, 1);
@@ -387,7 +390,8 @@ namespace mpm
       }
     data_out.build_patches();
     DataOutBase::VtkFlags flags;
-    flags.time = integrator.time();
+    flags.time              = integrator.time();
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(flags);
     const std::string name = data_out.write_vtu_with_pvtu_record(
       prm.directory + "/", "grid", counter, comm, 5, 1);
