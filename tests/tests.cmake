@@ -66,9 +66,12 @@ mpm_test(leaving_grid_stop PRM leaving_grid.prm EXIT 2
   FILES statistics.csv particles.pvd)
 mpm_test(leaving_grid_remove PRM leaving_grid.prm ARGS -s "Simulation/out of grid=remove")
 
-# 6. 3D block dropped in a box: reviewed statistics.
-mpm_test(block_3d)
+# 6. 3D block dropped in a box: reviewed statistics (and the optional grid
+#    output is written next to the particles).
+mpm_test(block_3d ARGS -s "Output/grid output=true"
+  FILES particles.pvd grid.pvd grid_00006.pvtu timing.csv)
 
 # The parameter reference, reviewed: a change to any name, default or
 # documentation shows up here.
 mpm_test(print_parameters ARGS --print-parameters STDOUT print_parameters.output)
+mpm_test(help ARGS --help STDOUT help.output)
