@@ -350,20 +350,7 @@ namespace mpm
         out.patches.push_back(std::move(patch));
       }
 
-    DataOutBase::VtkFlags flags;
-    flags.time  = integrator.time();
-    flags.cycle = integrator.step_number();
-    // deal.II's default, best_compression, made output 10x slower than a
-    // step of the whole scene for a 20% smaller file.
-    flags.compression_level = DataOutBase::VtkFlags::best_speed;
-    out.set_flags(flags);
-    const std::string name = out.write_vtu_with_pvtu_record(
-      prm.directory + "/", "particles", counter, comm, 5, 1);
-    if (is_root)
-      {
-        particle_files.emplace_back(integrator.time(), name);
-        write_pvd(prm.directory + "/particles.pvd", particle_files);
-      }
+    write_files(out, "particles", particle_files);
   }
 
 
@@ -389,16 +376,31 @@ namespace mpm
         data_out.add_data_vector(fields[c], names[c]);
       }
     data_out.build_patches();
+    write_files(data_out, "grid", grid_files);
+  }
+
+
+  template <int dim>
+  template <int patch_dim>
+  void
+  Output<dim>::write_files(DataOutInterface<patch_dim, dim>            &out,
+                           const std::string                           &base,
+                           std::vector<std::pair<double, std::string>> &records)
+  {
     DataOutBase::VtkFlags flags;
-    flags.time              = integrator.time();
+    flags.time  = integrator.time();
+    flags.cycle = integrator.step_number();
+    // deal.II's default, best_compression, made output 10x slower than a
+    // step of the whole scene for about the same file size.
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
-    data_out.set_flags(flags);
-    const std::string name = data_out.write_vtu_with_pvtu_record(
-      prm.directory + "/", "grid", counter, comm, 5, 1);
+    out.set_flags(flags);
+    // One .vtu per output time whatever the number of ranks (n_groups = 1).
+    const std::string name = out.write_vtu_with_pvtu_record(
+      prm.directory + "/", base, counter, comm, 5, 1);
     if (is_root)
       {
-        grid_files.emplace_back(integrator.time(), name);
-        write_pvd(prm.directory + "/grid.pvd", grid_files);
+        records.emplace_back(integrator.time(), name);
+        write_pvd(prm.directory + "/" + base + ".pvd", records);
       }
   }
 

@@ -2,6 +2,7 @@
 #define mpm_output_h
 
 #include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/background_grid.h>
@@ -98,6 +99,12 @@ namespace mpm
     write_particles();
     void
     write_grid();
+    /// VTU (+PVTU) of @p out at this time, and the PVD record @p base.pvd.
+    template <int patch_dim>
+    void
+    write_files(DataOutInterface<patch_dim, dim>            &out,
+                const std::string                           &base,
+                std::vector<std::pair<double, std::string>> &records);
 
     const OutputParameters                      prm;
     const BackgroundGrid<dim>                  &grid;
