@@ -94,19 +94,13 @@ namespace
       {
         for (; depth + 1 < parts.size(); ++depth)
           prm.enter_subsection(parts[depth]);
-        prm.get(parts.back()); // throws if there is no such entry
-        try
-          {
-            prm.set(parts.back(), value);
-          }
-        catch (const ExceptionBase &e)
-          {
-            problem = one_line(e);
-          }
+        // set() throws (in Release and Debug builds alike) for an entry
+        // that is not declared or a value that does not fit its pattern.
+        prm.set(parts.back(), value);
       }
-    catch (const ExceptionBase &)
+    catch (const ExceptionBase &e)
       {
-        problem = "no such parameter (see dealii-mpm --print-parameters)";
+        problem = one_line(e);
       }
     for (unsigned int i = 0; i < depth; ++i)
       prm.leave_subsection();

@@ -8,17 +8,6 @@
 
 namespace mpm
 {
-  namespace
-  {
-    std::string
-    prm_text(const std::vector<std::string> &expressions)
-    {
-      std::string s;
-      for (const auto &e : expressions)
-        s += (s.empty() ? "" : "; ") + e;
-      return s;
-    }
-  } // namespace
 
 
   template <int dim>
@@ -62,6 +51,14 @@ namespace mpm
                       "separated by ';' (or one for all), in the variables "
                       "x, y, z of the initial position; pi is known. "
                       "Example: '0.1*sin(pi*x/50)'.");
+    prm.declare_entry("body force",
+                      "0",
+                      Patterns::Anything(),
+                      "Body force per unit mass (besides gravity), in m/s^2: "
+                      "one expression per component separated by ';' (or "
+                      "one for all), in the initial position x, y, z of the "
+                      "point and time t, e.g. for manufactured solutions. "
+                      "Non-zero makes every point store its initial position.");
     prm.declare_entry("material",
                       "linear elastic",
                       Patterns::Selection(MaterialRegistry::names()),
@@ -80,7 +77,8 @@ namespace mpm
   BodyParameters<dim>::parse_parameters(ParameterHandler  &prm,
                                         const unsigned int index)
   {
-    name = "Bodies/Body " + std::to_string(index);
+    name      = "Bodies/Body " + std::to_string(index);
+    constants = Parse::constants(prm);
     prm.enter_subsection("Bodies");
     prm.enter_subsection("Body " + std::to_string(index));
     shape = prm.get("shape") == "box" ? Shape::box : Shape::ball;
@@ -113,6 +111,10 @@ namespace mpm
     density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
     initial_velocity =
       Parse::expression_list(prm, "initial velocity", dim, name);
+    const auto force = Parse::expression_list(prm, "body force", dim, name);
+    if (!Parse::is_zero(force))
+      body_force =
+        Parse::vector_function<dim>(force, constants, name + "/body force");
     material_name = prm.get("material");
     material      = MaterialRegistry::create<dim>(material_name, prm, name);
     prm.leave_subsection();
@@ -204,20 +206,11 @@ namespace mpm
     minimum_mass = std::numeric_limits<double>::max();
     for (unsigned int b = 0; b < body_list.size(); ++b)
       {
-        const auto         &body = body_list[b];
-        FunctionParser<dim> velocity(dim);
-        try
-          {
-            velocity.initialize(FunctionParser<dim>::default_variable_names(),
-                                body.initial_velocity,
-                                {{"pi", numbers::PI}});
-          }
-        catch (...)
-          {
-            throw InputError(body.name + "/initial velocity",
-                             prm_text(body.initial_velocity),
-                             "is not a valid expression in x, y, z");
-          }
+        const auto &body = body_list[b];
+        const auto  velocity =
+          Parse::vector_function<dim>(body.initial_velocity,
+                                      body.constants,
+                                      body.name + "/initial velocity");
         const unsigned int n      = body.particles_per_cell;
         const unsigned int n_sub  = Utilities::fixed_power<dim>(n);
         const double       volume = cell_volume / n_sub;
@@ -246,7 +239,7 @@ namespace mpm
                 p[l.volume] = volume;
                 p[l.body]   = b;
                 for (unsigned int d = 0; d < dim; ++d)
-                  p[l.velocity + d] = velocity.value(x, d);
+                  p[l.velocity + d] = velocity->value(x, d);
                 if (l.deformation_gradient != FieldLayout::absent)
                   for (unsigned int d = 0; d < dim; ++d)
                     p[l.deformation_gradient + d * dim + d] = 1.;

@@ -1,5 +1,7 @@
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/lac/vector.h>
+
 #include <mpm/parameters.h>
 
 #include <sstream>
@@ -176,6 +178,97 @@ namespace mpm
     }
 
 
+    bool
+    is_zero(const std::vector<std::string> &expressions)
+    {
+      for (const auto &e : expressions)
+        {
+          try
+            {
+              if (Utilities::string_to_double(e) != 0.)
+                return false;
+            }
+          catch (...)
+            {
+              return false;
+            }
+        }
+      return true;
+    }
+
+
+    std::map<std::string, double>
+    constants(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Simulation");
+      const std::string text = prm.get("constants");
+      prm.leave_subsection();
+      std::map<std::string, double> c = {{"pi", numbers::PI}};
+      for (const auto &entry : Utilities::split_string_list(text, ','))
+        {
+          const auto eq = entry.find('=');
+          try
+            {
+              if (eq == std::string::npos)
+                throw 0;
+              c[Utilities::trim(entry.substr(0, eq))] =
+                Utilities::string_to_double(
+                  Utilities::trim(entry.substr(eq + 1)));
+            }
+          catch (...)
+            {
+              throw InputError("Simulation/constants",
+                               text,
+                               "must be a comma-separated list of name=number");
+            }
+        }
+      return c;
+    }
+
+
+    template <int dim>
+    std::unique_ptr<FunctionParser<dim>>
+    vector_function(const std::vector<std::string>      &expressions,
+                    const std::map<std::string, double> &constants,
+                    const std::string                   &parameter)
+    {
+      auto        f = std::make_unique<FunctionParser<dim>>(dim);
+      std::string text;
+      for (const auto &e : expressions)
+        text += (text.empty() ? "" : "; ") + e;
+      try
+        {
+          f->initialize(FunctionParser<dim>::default_variable_names() + ",t",
+                        expressions,
+                        constants,
+                        true);
+          // muparser reports unknown names only on first evaluation.
+          Vector<double> value(dim);
+          f->vector_value(Point<dim>(), value);
+        }
+      catch (...)
+        {
+          throw InputError(parameter,
+                           text,
+                           "is not a valid expression in x, y, z, t and the "
+                           "names of 'Simulation/constants'");
+        }
+      return f;
+    }
+
+
+    template std::unique_ptr<FunctionParser<1>>
+    vector_function<1>(const std::vector<std::string> &,
+                       const std::map<std::string, double> &,
+                       const std::string &);
+    template std::unique_ptr<FunctionParser<2>>
+    vector_function<2>(const std::vector<std::string> &,
+                       const std::map<std::string, double> &,
+                       const std::string &);
+    template std::unique_ptr<FunctionParser<3>>
+    vector_function<3>(const std::vector<std::string> &,
+                       const std::map<std::string, double> &,
+                       const std::string &);
     template Point<1>
     point<1>(const ParameterHandler &,
              const std::string &,

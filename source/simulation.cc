@@ -66,9 +66,11 @@ namespace mpm
                                           TimerOutput::never,
                                           TimerOutput::wall_times);
     grid  = std::make_unique<BackgroundGrid<dim>>(grid_parameters, comm);
-    const bool store_initial_position =
+    bool store_initial_position =
       output_parameters.writes("displacement") ||
       Verification<dim>::needs_initial_position(verification_parameters);
+    for (const auto &body : body_parameters)
+      store_initial_position = store_initial_position || body.body_force;
     points = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,
                                                    store_initial_position,

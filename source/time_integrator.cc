@@ -11,6 +11,12 @@ namespace mpm
   IntegratorParameters<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Simulation");
+    prm.declare_entry("constants",
+                      "",
+                      Patterns::Anything(),
+                      "Named constants for every expression of the scene "
+                      "(initial velocity, body force, exact solution), as "
+                      "'name=value, ...'; pi is always known.");
     prm.declare_entry("end time",
                       "1",
                       Patterns::Anything(),
@@ -151,7 +157,11 @@ namespace mpm
     grid_sums.reinit(grid.make_partitioner(n_sums));
     grid_velocity.reinit(grid.make_partitioner(n_velocities));
     for (const auto &body : points.bodies())
-      wave_modulus_of_body.push_back(body.material->p_wave_modulus());
+      {
+        wave_modulus_of_body.push_back(body.material->p_wave_modulus());
+        body_forces.push_back(body.body_force.get());
+        has_body_forces = has_body_forces || body.body_force;
+      }
     min_nodal_mass = prm.small_mass_fraction * points.min_particle_mass();
 
     if (prm.fixed_time_step > 0)
@@ -297,6 +307,9 @@ namespace mpm
 
     const FieldLayout   &l       = points.layout();
     const Tensor<1, dim> gravity = prm.gravity;
+    for (auto *f : body_forces)
+      if (f != nullptr)
+        f->set_time(t);
     for_each_point(grid,
                    points.handler(),
                    [&](auto &,
@@ -323,7 +336,9 @@ namespace mpm
                          // stress.
                          const SymmetricTensor<2, dim> Vsigma =
                            q[l.volume] * Fields::symmetric<dim>(q + l.stress);
-                         const Tensor<1, dim> mg = m * gravity;
+                         const Tensor<1, dim> mg =
+                           m * (has_body_forces ? gravity + body_force(q)
+                                                : gravity);
                          for (unsigned int v = 0; v < nodes.size(); ++v)
                            {
                              const Tensor<1, dim> f =
@@ -335,6 +350,22 @@ namespace mpm
                        }
                    });
     grid_sums.compress(VectorOperation::add);
+  }
+
+
+  template <int dim>
+  inline Tensor<1, dim>
+  TimeIntegrator<dim>::body_force(const double *q) const
+  {
+    const FieldLayout &l = points.layout();
+    Tensor<1, dim>     b;
+    if (FunctionParser<dim> *f = body_forces[q[l.body]])
+      {
+        const Point<dim> X(Fields::vector<dim>(q + l.initial_position));
+        for (unsigned int d = 0; d < dim; ++d)
+          b[d] = f->value(X, d);
+      }
+    return b;
   }
 
 

@@ -15,7 +15,7 @@ namespace mpm
     prm.declare_entry("exact solution",
                       "none",
                       Patterns::Selection(
-                        "none|vibrating bar|self-weight column"),
+                        "none|vibrating bar|self-weight column|displacement"),
                       "Known answer to compare with. 'vibrating bar': body 0 "
                       "is a bar fixed at its lower x end, started in mode 1 "
                       "with velocity amplitude 'amplitude'; the error is "
@@ -23,7 +23,16 @@ namespace mpm
                       "output times. 'self-weight column': body 0 at rest "
                       "under gravity on a slip floor; the error is the "
                       "volume-weighted RMS of sigma_yy + rho g (H - y0) "
-                      "over rho g H, at the end.");
+                      "over rho g H, at the end. 'displacement': the exact "
+                      "displacement is 'exact displacement'; the errors are "
+                      "sqrt(sum_p V_p |u_p - u(X_p, t)|^2) and max_p "
+                      "|u_p - u(X_p, t)|, maximum over output times.");
+    prm.declare_entry("exact displacement",
+                      "0",
+                      Patterns::Anything(),
+                      "For 'displacement': u(X, t), one expression per "
+                      "component separated by ';', in the initial position "
+                      "x, y, z, time t and 'Simulation/constants'.");
     prm.declare_entry("amplitude",
                       "0.1",
                       Patterns::Anything(),
@@ -50,11 +59,16 @@ namespace mpm
   VerificationParameters::parse_parameters(ParameterHandler &prm)
   {
     const std::string s = "Verification";
+    constants           = Parse::constants(prm);
     prm.enter_subsection(s);
     const std::string e = prm.get("exact solution");
-    exact               = e == "none"            ? Exact::none
-                          : e == "vibrating bar" ? Exact::vibrating_bar
-                                                 : Exact::self_weight_column;
+    exact               = e == "none"                 ? Exact::none
+                          : e == "vibrating bar"      ? Exact::vibrating_bar
+                          : e == "self-weight column" ? Exact::self_weight_column
+                                                      : Exact::displacement;
+    // The dimension is not known here: the list is checked in Verification.
+    exact_displacement =
+      Utilities::split_string_list(prm.get("exact displacement"), ';');
     amplitude   = Parse::bounded_double(prm, s, "amplitude", 0, 1e300, true);
     error_bound = Parse::bounded_double(prm, s, "error bound", 0, 1e300);
     energy_drift_bound =
@@ -77,8 +91,20 @@ namespace mpm
     , comm(comm)
   {
     const auto &body = points.bodies()[0];
-    if (prm.exact != VerificationParameters::Exact::none &&
-        body.shape != BodyParameters<dim>::Shape::box)
+    if (prm.exact == VerificationParameters::Exact::displacement)
+      {
+        if (prm.exact_displacement.size() != dim)
+          throw InputError(
+            "Verification/exact displacement",
+            prm.exact_displacement.empty() ? "" : prm.exact_displacement[0],
+            "expects " + std::to_string(dim) + " expressions separated by ';'");
+        exact_displacement =
+          Parse::vector_function<dim>(prm.exact_displacement,
+                                      prm.constants,
+                                      "Verification/exact displacement");
+      }
+    else if (prm.exact != VerificationParameters::Exact::none &&
+             body.shape != BodyParameters<dim>::Shape::box)
       throw InputError("Verification/exact solution",
                        "",
                        "needs body 0 to be a box");
@@ -94,7 +120,8 @@ namespace mpm
   bool
   Verification<dim>::needs_initial_position(const VerificationParameters &p)
   {
-    return p.exact == VerificationParameters::Exact::self_weight_column;
+    return p.exact == VerificationParameters::Exact::self_weight_column ||
+           p.exact == VerificationParameters::Exact::displacement;
   }
 
 
@@ -105,6 +132,8 @@ namespace mpm
     std::vector<std::string> c;
     if (prm.exact != VerificationParameters::Exact::none)
       c.push_back("error");
+    if (prm.exact == VerificationParameters::Exact::displacement)
+      c.push_back("error_max");
     c.push_back("energy_drift");
     c.push_back("momentum_drift");
     return c;
@@ -165,6 +194,28 @@ namespace mpm
 
 
   template <int dim>
+  std::pair<double, double>
+  Verification<dim>::displacement_error(const double t) const
+  {
+    const FieldLayout &l = points.layout();
+    exact_displacement->set_time(t);
+    double sum = 0, max_norm = 0;
+    for (const auto &p : points.handler())
+      {
+        const double    *q = p.get_properties().data();
+        const Point<dim> X(Fields::vector<dim>(q + l.initial_position));
+        Tensor<1, dim>   e = p.get_location() - X;
+        for (unsigned int d = 0; d < dim; ++d)
+          e[d] -= exact_displacement->value(X, d);
+        sum += q[l.volume] * e.norm_square();
+        max_norm = std::max(max_norm, e.norm());
+      }
+    return {std::sqrt(Utilities::MPI::sum(sum, comm)),
+            Utilities::MPI::max(max_norm, comm)};
+  }
+
+
+  template <int dim>
   std::vector<double>
   Verification<dim>::evaluate(const Statistics<dim> &s, const double t)
   {
@@ -176,7 +227,16 @@ namespace mpm
         have_initial_state     = true;
       }
     std::vector<double> values;
-    if (prm.exact != VerificationParameters::Exact::none)
+    if (prm.exact == VerificationParameters::Exact::displacement)
+      {
+        const auto [l2, linf] = displacement_error(t);
+        last_error            = l2;
+        max_error             = std::max(max_error, l2);
+        max_error_max_norm    = std::max(max_error_max_norm, linf);
+        values.push_back(l2);
+        values.push_back(linf);
+      }
+    else if (prm.exact != VerificationParameters::Exact::none)
       {
         last_error = exact_solution_error(t);
         max_error  = std::max(max_error, last_error);
@@ -208,6 +268,9 @@ namespace mpm
     const double error = at_end ? last_error : max_error;
     if (prm.exact != VerificationParameters::Exact::none)
       {
+        if (prm.exact == VerificationParameters::Exact::displacement)
+          out << "Verification: max-norm displacement error (max over time) = "
+              << max_error_max_norm << "\n";
         out << "Verification: error "
             << (at_end ? "at the end" : "(max over time)") << " = " << error
             << (prm.error_bound > 0

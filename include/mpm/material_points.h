@@ -1,6 +1,7 @@
 #ifndef mpm_material_points_h
 #define mpm_material_points_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <deal.II/particles/particle_handler.h>
@@ -9,6 +10,7 @@
 #include <mpm/field_layout.h>
 #include <mpm/material.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,7 +42,12 @@ namespace mpm
     unsigned int             particles_per_cell;         ///< per direction
     double                   density;
     std::vector<std::string> initial_velocity; ///< one expression per component
-    std::string              material_name;
+    /// Body force per unit mass, b(X, t): expressions in the initial
+    /// position X = (x, y, z) and time t; null if zero.
+    std::shared_ptr<FunctionParser<dim>> body_force;
+    /// The scene's named constants, for every expression.
+    std::map<std::string, double>  constants;
+    std::string                    material_name;
     std::shared_ptr<Material<dim>> material;
 
     bool

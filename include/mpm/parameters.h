@@ -6,6 +6,10 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <deal.II/base/function_parser.h>
+
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -91,6 +95,23 @@ namespace mpm
                     const std::string      &name,
                     const unsigned int      n,
                     const std::string      &path);
+
+    /// True if every expression is the number zero.
+    bool
+    is_zero(const std::vector<std::string> &expressions);
+
+    /// The scene's named constants, "name=value, ..." in
+    /// 'Simulation/constants' (plus pi), for every expression.
+    std::map<std::string, double>
+    constants(ParameterHandler &prm);
+
+    /// A vector function of x, y, z and t from @p expressions; an
+    /// expression that does not parse is an InputError naming @p parameter.
+    template <int dim>
+    std::unique_ptr<FunctionParser<dim>>
+    vector_function(const std::vector<std::string>      &expressions,
+                    const std::map<std::string, double> &constants,
+                    const std::string                   &parameter);
   } // namespace Parse
 } // namespace mpm
 

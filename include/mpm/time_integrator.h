@@ -142,6 +142,9 @@ namespace mpm
     update_stresses(const double dt);
     void
     apply_velocity_constraints(const unsigned int slot);
+    /// Body force per unit mass b(X, t) of a point (without gravity).
+    Tensor<1, dim>
+    body_force(const double *q) const;
     /// L at a point from the nodal velocities in @p slot (small-mass guard).
     template <typename Nodes, typename Weights, typename Gradients>
     Tensor<2, dim>
@@ -167,6 +170,8 @@ namespace mpm
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
     std::vector<double>                        wave_modulus_of_body;
+    std::vector<FunctionParser<dim> *>         body_forces; ///< null: none
+    bool                                       has_body_forces = false;
 
     double                min_nodal_mass;
     double                t         = 0;

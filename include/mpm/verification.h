@@ -21,13 +21,16 @@ namespace mpm
     enum class Exact
     {
       none,
-      vibrating_bar,     ///< fixed-free bar, mode 1, body 0
-      self_weight_column ///< body 0 at rest under gravity, uniaxial stress
+      vibrating_bar,      ///< fixed-free bar, mode 1, body 0
+      self_weight_column, ///< body 0 at rest under gravity, uniaxial stress
+      displacement        ///< u(X, t) given as expressions, all bodies
     } exact;
-    double amplitude;            ///< vibrating bar: v0
-    double error_bound;          ///< 0: not checked
-    double energy_drift_bound;   ///< 0: not checked
-    double momentum_drift_bound; ///< 0: not checked
+    std::vector<std::string>      exact_displacement; ///< expressions
+    std::map<std::string, double> constants;
+    double                        amplitude;            ///< vibrating bar: v0
+    double                        error_bound;          ///< 0: not checked
+    double                        energy_drift_bound;   ///< 0: not checked
+    double                        momentum_drift_bound; ///< 0: not checked
   };
 
 
@@ -65,16 +68,22 @@ namespace mpm
   private:
     double
     exact_solution_error(const double t) const;
+    /// L2 (sqrt of sum V |u - u_exact|^2) and max norm of the displacement
+    /// error against the expression, over all points.
+    std::pair<double, double>
+    displacement_error(const double t) const;
 
     const VerificationParameters prm;
     const MaterialPoints<dim>   &points;
     const Tensor<1, dim>         gravity;
     MPI_Comm                     comm;
 
-    bool           have_initial_state = false;
-    double         initial_energy, initial_momentum_scale;
-    Tensor<1, dim> initial_momentum;
-    double         max_error = 0, last_error = 0, max_energy_drift = 0,
+    std::unique_ptr<FunctionParser<dim>> exact_displacement;
+    double                               max_error_max_norm = 0;
+    bool                                 have_initial_state = false;
+    double                               initial_energy, initial_momentum_scale;
+    Tensor<1, dim>                       initial_momentum;
+    double max_error = 0, last_error = 0, max_energy_drift = 0,
            max_momentum_drift = 0;
   };
 } // namespace mpm
