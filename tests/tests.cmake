@@ -75,3 +75,17 @@ mpm_test(block_3d ARGS -s "Output/grid output=true"
 # documentation shows up here.
 mpm_test(print_parameters ARGS --print-parameters STDOUT print_parameters.output)
 mpm_test(help ARGS --help STDOUT help.output)
+
+# Convergence (issue 3's coarse ladder, through the sweep tool): the 1D
+# manufactured solution at small amplitude converges at second order with
+# the linear basis; at large amplitude the linear basis fails cleanly (the
+# error grows under refinement, every run finishes with finite numbers).
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+add_test(NAME mms_1d_order
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/verification/sweep.py
+    --exe $<TARGET_FILE:dealii-mpm> --problems mms_1d_small
+    --configs USL-FLIP,MUSL-FLIP --ladder coarse --check --min-order 1.8 --max-error 3e-7)
+add_test(NAME mms_1d_large_linear_fails_cleanly
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/verification/sweep.py
+    --exe $<TARGET_FILE:dealii-mpm> --problems mms_1d_large
+    --configs USL-FLIP --ladder coarse --check --expect-growth)

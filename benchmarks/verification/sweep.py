@@ -1,0 +1,289 @@
+#!/usr/bin/env python3
+"""Speed-against-error sweep for dealii-mpm (issue 3).
+
+Runs every problem over a resolution ladder for every update scheme and
+transfer, writes one CSV row per run, fits the observed order of the error
+against the cell size, and (with --plots) draws error-vs-h and
+error-vs-wall-time PNGs and regenerates doc/verification.md.
+
+  sweep.py --exe build/dealii-mpm                        full sweep + report
+  sweep.py --exe ... --problems mms_1d_small --ladder coarse --check
+           --configs USL-FLIP --min-order 1.7 --max-error 1e-6
+                                                         a ctest assertion
+
+Each run's error is what the program itself reports against the exact
+solution ('Verification' section of the scene); wall time and ns per
+particle-step come from the run's timing.csv.
+"""
+import argparse, csv, math, os, re, subprocess, sys, tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+MMS = "c=100, E=1e7, rho=1000, lambda=0, mu=5e6"
+
+
+def mms_1d(amplitude):
+    def overrides(n):
+        return ["Grid/cells=%d" % n,
+                "Simulation/time step=%.10g" % (0.2 / n / 100),
+                "Simulation/constants=G=%g, %s" % (amplitude, MMS)]
+    return overrides
+
+
+def bar(n):
+    # L = 25 on a 27 m grid: h = 27 / n.
+    return ["Grid/cells=%d" % n]
+
+
+def column(n):
+    h = 1.25 / n
+    return ["Grid/cells=1, %d" % n, "Grid/upper corner=%.10g, 1.25" % h,
+            "Bodies/Body 0/upper corner=%.10g, 1" % h]
+
+
+def disks(n):
+    return ["Grid/cells=%d" % n]
+
+
+# name: (scene, overrides(n), ladders, h(n), error label in the output,
+#        what the error measures)
+PROBLEMS = {
+    "mms_1d_small": ("mms_1d.prm", mms_1d(1e-4),
+                     {"coarse": [16, 32, 64], "full": [8, 16, 32, 64, 128, 256]},
+                     lambda n: 1.0 / n, "error (max over time)",
+                     "1D MMS, G = 1e-4: sqrt(sum V (u - u_exact)^2), max over time"),
+    "mms_1d_large": ("mms_1d.prm", mms_1d(0.05),
+                     {"coarse": [16, 32, 64], "full": [8, 16, 32, 64, 128, 256]},
+                     lambda n: 1.0 / n, "error (max over time)",
+                     "1D MMS, G = 0.05 (cell crossing): same norm"),
+    "vibrating_bar": ("vibrating_bar.prm", bar,
+                      {"coarse": [27, 54], "full": [27, 54, 108, 216]},
+                      lambda n: 27.0 / n, "error (max over time)",
+                      "bar, |v_com - exact| / v0, max over one period"),
+    "self_weight_column": ("self_weight_column.prm", column,
+                           {"coarse": [10, 20], "full": [5, 10, 20, 40, 80]},
+                           lambda n: 1.25 / n, "error at the end",
+                           "column, RMS(sigma_yy - exact) / (rho g H) at rest"),
+    "two_disks": ("two_disks.prm", disks,
+                  {"coarse": [10, 20], "full": [10, 20, 40, 80]},
+                  lambda n: 1.0 / n, "max energy drift",
+                  "two disks, max |E(t) - E(0)| / E(0) (no exact field)"),
+}
+
+CONFIGS = {  # name: overrides
+    "USL-FLIP": ["Simulation/update scheme=USL", "Simulation/FLIP fraction=1"],
+    "USL-PIC": ["Simulation/update scheme=USL", "Simulation/FLIP fraction=0"],
+    "USF-FLIP": ["Simulation/update scheme=USF", "Simulation/FLIP fraction=1"],
+    "MUSL-FLIP": ["Simulation/update scheme=MUSL", "Simulation/FLIP fraction=1"],
+    "MUSL-PIC": ["Simulation/update scheme=MUSL", "Simulation/FLIP fraction=0"],
+}
+
+
+def run(exe, problem, config, n, work):
+    scene, overrides, _, h, label, _ = PROBLEMS[problem]
+    out = os.path.join(work, "%s-%s-%d" % (problem, config, n))
+    args = [exe, os.path.join(HERE, scene), "-s", "Output/directory=" + out,
+            "-s", "Output/progress interval=1e9"]
+    for o in overrides(n) + CONFIGS[config]:
+        args += ["-s", o]
+    p = subprocess.run(args, capture_output=True, text=True)
+    row = {"problem": problem, "dim": "", "basis": "linear",
+           "transfer": config.split("-")[1], "scheme": config.split("-")[0],
+           "cells": n, "h": h(n), "status": "ok" if p.returncode == 0 else "stopped"}
+    m = re.search(r"Verification: " + re.escape(label) + r"[^=]*= *([-+0-9.eE]+|nan|inf)", p.stdout)
+    row["error"] = float(m.group(1)) if m else float("nan")
+    m = re.search(r"max-norm displacement error \(max over time\) = ([-+0-9.eE]+)", p.stdout)
+    row["error_max_norm"] = float(m.group(1)) if m else ""
+    m = re.search(r"dealii-mpm: (\d)D", p.stdout)
+    row["dim"] = int(m.group(1)) if m else ""
+    timing = {}
+    try:
+        with open(os.path.join(out, "timing.csv")) as f:
+            for r in csv.reader(f):
+                timing[r[0]] = r[1:]
+    except OSError:
+        pass
+    row["particles"] = int(float(timing["particles"][0])) if "particles" in timing else ""
+    row["steps"] = int(float(timing["time steps"][0])) if "time steps" in timing else ""
+    row["wall_seconds"] = float(timing["steps"][0]) if "steps" in timing else float("nan")
+    row["ns_per_particle_step"] = float(timing["steps"][1]) if "steps" in timing else ""
+    if p.returncode != 0:
+        row["diagnosis"] = p.stderr.strip().splitlines()[-1][:200] if p.stderr.strip() else ""
+    return row
+
+
+def fitted_order(rows):
+    pts = [(math.log(r["h"]), math.log(r["error"])) for r in rows
+           if r["status"] == "ok" and r["error"] > 0 and math.isfinite(r["error"])]
+    if len(pts) < 2:
+        return float("nan")
+    mx = sum(p[0] for p in pts) / len(pts)
+    my = sum(p[1] for p in pts) / len(pts)
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+
+
+def plots(rows, outdir):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    images = {}
+    for problem in PROBLEMS:
+        sel = [r for r in rows if r["problem"] == problem]
+        if not sel:
+            continue
+        fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4))
+        for config in CONFIGS:
+            rs = sorted([r for r in sel if "%s-%s" % (r["scheme"], r["transfer"]) == config
+                         and r["status"] == "ok" and math.isfinite(r["error"])],
+                        key=lambda r: -r["h"])
+            if not rs:
+                continue
+            label = "%s (order %.2f)" % (config, fitted_order(rs))
+            a.loglog([r["h"] for r in rs], [r["error"] for r in rs], "o-", label=label)
+            b.loglog([r["wall_seconds"] for r in rs], [r["error"] for r in rs], "o-", label=config)
+        a.set_xlabel("cell size h"); a.set_ylabel("error"); a.invert_xaxis()
+        a.set_title(PROBLEMS[problem][5], fontsize=9); a.legend(fontsize=7)
+        b.set_xlabel("wall seconds (time steps only)"); b.set_ylabel("error")
+        b.set_title("speed against error", fontsize=9); b.legend(fontsize=7)
+        for ax in (a, b):
+            ax.grid(True, which="both", alpha=0.3)
+        fig.tight_layout()
+        path = os.path.join(outdir, "verification_%s.png" % problem)
+        fig.savefig(path, dpi=80)
+        plt.close(fig)
+        images[problem] = os.path.basename(path)
+    return images
+
+
+def report(rows, images, path):
+    lines = ["# Verification: error against resolution and cost", "",
+             "Generated by `benchmarks/verification/sweep.py --plots` (do not edit by hand);",
+             "the raw results are in `doc/verification.csv`. Errors are computed by the",
+             "program against the exact solution of each scene; wall seconds count the",
+             "time steps only. Basis: linear (FE_Q(1)) for now; GIMP, B-splines and APIC",
+             "join the sweep when they land (issue 4).", "",
+             "## Observed orders (least-squares slope of log error against log h)", "",
+             "| problem | " + " | ".join(CONFIGS) + " |",
+             "|---|" + "---|" * len(CONFIGS)]
+    for problem in PROBLEMS:
+        cells = []
+        for config in CONFIGS:
+            rs = [r for r in rows if r["problem"] == problem and
+                  "%s-%s" % (r["scheme"], r["transfer"]) == config]
+            if not rs:
+                cells.append("")
+                continue
+            stopped = sum(r["status"] != "ok" for r in rs)
+            o = fitted_order(rs)
+            cells.append(("%.2f" % o if math.isfinite(o) else "-") +
+                         (" (%d stopped)" % stopped if stopped else ""))
+        lines.append("| %s | %s |" % (problem, " | ".join(cells)))
+    lines += ["", "A negative order means the error grows under refinement.", "",
+              "## What to pick (linear basis)", "",
+              "- **Small deformation, no cell crossing** (elastic waves, the small-amplitude",
+              "  MMS): USL or MUSL with FLIP (alpha = 1 or 0.99). Both converge at second",
+              "  order until the first-order error of the explicit time update takes over",
+              "  (the 1D MMS flattens at h = 1/256, since dt is tied to h); they cost the same",
+              "  per step, and their curves lie on top of each other.",
+              "- **PIC (alpha = 0)** is first order and visibly dissipative: at equal cost its",
+              "  error is 5-70x larger. Use it only where stability matters more than accuracy.",
+              "- **USF** converged at first order here, and on the settling block at",
+              "  h <= 1/32 it slowly gains energy (see the closing note of issue 2); prefer",
+              "  MUSL.",
+              "- **Cell crossing** (large-amplitude MMS, the vibrating bar's free end, the",
+              "  settling column at h = 1/64): the linear basis does not converge; the error",
+              "  *grows* under refinement for every scheme and transfer. Every run fails",
+              "  cleanly: it stays finite thanks to the small-mass guard (with the guard off,",
+              "  the bar's end point inverts), or stops with a diagnosis (USF on the column",
+              "  at h = 1/64 throws a point out of the grid). Such scenes need GIMP or",
+              "  B-splines (issue 4).",
+              ""]
+    for problem, image in images.items():
+        lines += ["## %s" % problem, "", PROBLEMS[problem][5] + ".", "",
+                  "![%s](%s)" % (problem, image), "", "| config | cells | error | wall s | ns/particle-step |",
+                  "|---|---:|---:|---:|---:|"]
+        for r in rows:
+            if r["problem"] == problem:
+                lines.append("| %s-%s | %s | %s | %.3g | %s |" % (
+                    r["scheme"], r["transfer"], r["cells"],
+                    ("%.3e" % r["error"]) if r["status"] == "ok" else "stopped",
+                    r["wall_seconds"], ("%.0f" % r["ns_per_particle_step"]) if r["ns_per_particle_step"] != "" else ""))
+        lines.append("")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "dealii-mpm"))
+    ap.add_argument("--problems", default=",".join(PROBLEMS))
+    ap.add_argument("--configs", default=",".join(CONFIGS))
+    ap.add_argument("--ladder", default="full", choices=["coarse", "full"])
+    ap.add_argument("--csv", default=None, help="write the rows here")
+    ap.add_argument("--plots", action="store_true", help="PNGs and doc/verification.md")
+    ap.add_argument("--check", action="store_true", help="assert the bounds below")
+    ap.add_argument("--from-csv", default=None,
+                    help="redraw plots and report from an earlier --csv file")
+    ap.add_argument("--min-order", type=float, default=None)
+    ap.add_argument("--max-error", type=float, default=None)
+    ap.add_argument("--expect-growth", action="store_true",
+                    help="assert a known failure: finite errors that do not fall")
+    a = ap.parse_args()
+    rows = []
+    if a.from_csv:
+        with open(a.from_csv) as f:
+            for r in csv.DictReader(f):
+                for k in ("h", "error", "wall_seconds"):
+                    r[k] = float(r[k]) if r[k] not in ("", None) else float("nan")
+                r["cells"] = int(r["cells"])
+                r["ns_per_particle_step"] = float(r["ns_per_particle_step"]) if r["ns_per_particle_step"] else ""
+                rows.append(r)
+        a.problems = ",".join(sorted(set(r["problem"] for r in rows), key=list(PROBLEMS).index))
+    with tempfile.TemporaryDirectory() as work:
+        for problem in a.problems.split(","):
+            for config in a.configs.split(","):
+                for n in ([] if a.from_csv else PROBLEMS[problem][2][a.ladder]):
+                    r = run(a.exe, problem, config, n, work)
+                    rows.append(r)
+                    print("%-20s %-10s cells %4d: error %-12.4g %s" % (
+                        problem, config, n, r["error"], r["status"]), flush=True)
+    fields = ["problem", "dim", "basis", "transfer", "scheme", "cells", "h", "particles",
+              "steps", "error", "error_max_norm", "wall_seconds", "ns_per_particle_step",
+              "status", "diagnosis"]
+    if a.csv and not a.from_csv:
+        with open(a.csv, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+            w.writeheader()
+            w.writerows(rows)
+    if a.plots:
+        doc = os.path.join(ROOT, "doc")
+        report(rows, plots(rows, doc), os.path.join(doc, "verification.md"))
+    ok = True
+    if a.check:
+        for problem in a.problems.split(","):
+            for config in a.configs.split(","):
+                rs = [r for r in rows if r["problem"] == problem and
+                      "%s-%s" % (r["scheme"], r["transfer"]) == config]
+                order = fitted_order(rs)
+                finest = rs[-1]["error"]
+                print("%s %s: observed order %.3f, finest error %.4g" % (problem, config, order, finest))
+                if any(r["status"] != "ok" or not math.isfinite(r["error"]) for r in rs):
+                    ok = False
+                    print("  FAILED: a run stopped or gave a non-finite error")
+                if a.min_order is not None and not order >= a.min_order:
+                    ok = False
+                    print("  FAILED: order below %g" % a.min_order)
+                if a.max_error is not None and not finest <= a.max_error:
+                    ok = False
+                    print("  FAILED: finest error above %g" % a.max_error)
+                if a.expect_growth and not order < 0.5:
+                    ok = False
+                    print("  FAILED: expected the known failure (order < 0.5), got %.3f" % order)
+    print("passed" if ok else "FAILED")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
