@@ -85,8 +85,10 @@ namespace mpm
 
 
   template <int dim>
-  BackgroundGrid<dim>::BackgroundGrid(const GridParameters<dim> &parameters,
-                                      MPI_Comm                   comm)
+  BackgroundGrid<dim>::BackgroundGrid(
+    const GridParameters<dim>                             &parameters,
+    MPI_Comm                                               comm,
+    const std::function<unsigned int(const Point<dim> &)> &work_estimate)
     : prm(parameters)
     , comm(comm)
     , fe(1)
@@ -114,6 +116,23 @@ namespace mpm
     // colorize: face f of the box gets boundary id f (x-, x+, y-, ...).
     GridGenerator::subdivided_hyper_rectangle(
       *tria, repetitions, prm.lower_corner, prm.upper_corner, true);
+
+    if constexpr (dim > 1)
+      if (work_estimate && Utilities::MPI::n_mpi_processes(comm) > 1)
+        {
+          // Partition by work, once, before DoFs and particles exist. The
+          // +1 keeps every weight positive and lets empty cells count a
+          // little (a point costs about 30 times a node per step).
+          auto &p_tria =
+            dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria);
+          auto connection = p_tria.signals.weight.connect(
+            [&](const typename Triangulation<dim>::cell_iterator &cell,
+                const typename Triangulation<dim>::CellStatus) -> unsigned int {
+              return 1 + 30 * work_estimate(cell->vertex(0));
+            });
+          p_tria.repartition();
+          connection.disconnect();
+        }
 
     for (unsigned int d = 0; d < dim; ++d)
       {

@@ -123,6 +123,47 @@ namespace mpm
 
 
   template <int dim>
+  template <typename Visitor>
+  void
+  BodyParameters<dim>::for_each_seed(const Point<dim>     &cell_origin,
+                                     const Tensor<1, dim> &h,
+                                     const Visitor        &visit) const
+  {
+    const unsigned int n = particles_per_cell;
+    for (unsigned int s = 0; s < Utilities::fixed_power<dim>(n); ++s)
+      {
+        // Points at the centres of n^dim sub-cells: interior, never on a
+        // face, where deal.II 9.4's in-cell test can lose them.
+        Point<dim>   xi;
+        unsigned int rest = s;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            xi[d] = ((rest % n) + 0.5) / n;
+            rest /= n;
+          }
+        Point<dim> x = cell_origin;
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] += xi[d] * h[d];
+        if (contains(x))
+          visit(x, xi);
+      }
+  }
+
+
+  template <int dim>
+  unsigned int
+  BodyParameters<dim>::count_seeds(const Point<dim>     &cell_origin,
+                                   const Tensor<1, dim> &h) const
+  {
+    unsigned int n = 0;
+    for_each_seed(cell_origin, h, [&n](const Point<dim> &, const Point<dim> &) {
+      ++n;
+    });
+    return n;
+  }
+
+
+  template <int dim>
   bool
   BodyParameters<dim>::contains(const Point<dim> &x) const
   {
@@ -218,22 +259,10 @@ namespace mpm
         minimum_mass              = std::min(minimum_mass, mass);
         for (const auto &cell : grid.triangulation().active_cell_iterators())
           if (cell->is_locally_owned())
-            for (unsigned int s = 0; s < n_sub; ++s)
-              {
-                // Points at the centres of n^dim sub-cells: interior, never
-                // on a face, where deal.II 9.4's in-cell test can lose them.
-                Point<dim>   xi;
-                unsigned int rest = s;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    xi[d] = ((rest % n) + 0.5) / n;
-                    rest /= n;
-                  }
-                Point<dim> x = cell->vertex(0);
-                for (unsigned int d = 0; d < dim; ++d)
-                  x[d] += xi[d] * grid.cell_size()[d];
-                if (!body.contains(x))
-                  continue;
+            body.for_each_seed(
+              cell->vertex(0),
+              grid.cell_size(),
+              [&](const Point<dim> &x, const Point<dim> &xi) {
                 std::vector<double> p(l.n_properties, 0.);
                 p[l.mass]   = mass;
                 p[l.volume] = volume;
@@ -251,7 +280,7 @@ namespace mpm
                 where.emplace_back(grid.cartesian_index(cell), b);
                 props.push_back(std::move(p));
                 ++count[b];
-              }
+              });
       }
     minimum_mass = Utilities::MPI::min(minimum_mass, comm);
 
@@ -357,7 +386,10 @@ namespace mpm
     if (Utilities::MPI::n_mpi_processes(comm) > 1)
       MPI_Allreduce(MPI_IN_PLACE, &changes, 1, MPI_INT, MPI_BOR, comm);
     if (changes & 1)
-      particles.sort_particles_into_subdomains_and_cells();
+      {
+        particles.sort_particles_into_subdomains_and_cells();
+        ++n_full_sorts;
+      }
     else if (changes & 2)
       particles.update_cached_numbers();
 

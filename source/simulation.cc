@@ -65,7 +65,19 @@ namespace mpm
                                           pcout,
                                           TimerOutput::never,
                                           TimerOutput::wall_times);
-    grid  = std::make_unique<BackgroundGrid<dim>>(grid_parameters, comm);
+    // Balance the ranks by the material points each cell will hold.
+    Tensor<1, dim> h;
+    for (unsigned int d = 0; d < dim; ++d)
+      h[d] =
+        (grid_parameters.upper_corner[d] - grid_parameters.lower_corner[d]) /
+        grid_parameters.n_cells[d];
+    grid = std::make_unique<BackgroundGrid<dim>>(
+      grid_parameters, comm, [&](const Point<dim> &cell_origin) {
+        unsigned int n = 0;
+        for (const auto &body : body_parameters)
+          n += body.count_seeds(cell_origin, h);
+        return n;
+      });
     bool store_initial_position =
       output_parameters.writes("displacement") ||
       Verification<dim>::needs_initial_position(verification_parameters);
@@ -221,6 +233,7 @@ namespace mpm
         f << "particles," << points->handler().n_global_particles() << ",\n";
         f << "time steps," << integrator->step_number() << ",\n";
         f << "ranks," << n_ranks << ",\n";
+        f << "collective sorts," << points->n_collective_sorts() << ",\n";
         f << "peak bytes per particle," << bytes_per_particle << ",\n";
       }
   }

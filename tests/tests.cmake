@@ -34,6 +34,8 @@ mpm_test(two_disks_musl PRM two_disks.prm
 # 4. The same scene on 2 MPI ranks gives the 1-rank statistics.
 mpm_test(two_disks_mpi2 PRM two_disks.prm NP 2 REFERENCE two_disks.output RELTOL 1e-7)
 mpm_test(block_3d_mpi2 PRM block_3d.prm NP 2 REFERENCE block_3d.output RELTOL 1e-7)
+mpm_test(two_disks_usf_mpi2 PRM two_disks.prm NP 2 REFERENCE two_disks_usf.output RELTOL 1e-7
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08")
 
 # 5. Bad input: one line naming the parameter and what is allowed.
 set(base two_disks.prm)

@@ -13,6 +13,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -61,7 +62,14 @@ namespace mpm
     static constexpr unsigned int nodes_per_cell = 1u << dim;
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
 
-    BackgroundGrid(const GridParameters<dim> &parameters, MPI_Comm comm);
+    /// @p work_estimate, if given, says how much work a cell (given by its
+    /// lower corner) will carry; the distributed grid is then partitioned
+    /// so that every rank gets the same work rather than the same number
+    /// of cells (material points usually fill only part of the grid).
+    BackgroundGrid(const GridParameters<dim> &parameters,
+                   MPI_Comm                   comm,
+                   const std::function<unsigned int(const Point<dim> &)>
+                     &work_estimate = {});
 
     const Triangulation<dim> &
     triangulation() const

@@ -52,6 +52,18 @@ namespace mpm
 
     bool
     contains(const Point<dim> &x) const;
+
+    /// Call visit(x, xi) for each point this body seeds in the cell with
+    /// lower corner @p cell_origin and size @p h (x real, xi reference).
+    template <typename Visitor>
+    void
+    for_each_seed(const Point<dim>     &cell_origin,
+                  const Tensor<1, dim> &h,
+                  const Visitor        &visit) const;
+
+    /// How many points this body seeds in that cell (for load balance).
+    unsigned int
+    count_seeds(const Point<dim> &cell_origin, const Tensor<1, dim> &h) const;
   };
 
 
@@ -113,6 +125,14 @@ namespace mpm
     types::particle_index
     relocate(const OutOfGridPolicy policy);
 
+    /// How often relocation needed deal.II's collective sort (a point
+    /// reached another rank's cell).
+    unsigned int
+    n_collective_sorts() const
+    {
+      return n_full_sorts;
+    }
+
     /// Smallest point mass in the scene (for the small-mass guard).
     double
     min_particle_mass() const
@@ -134,6 +154,7 @@ namespace mpm
     const FieldLayout                      fields;
     Particles::ParticleHandler<dim>        particles;
     double                                 minimum_mass;
+    unsigned int                           n_full_sorts = 0;
   };
 } // namespace mpm
 
