@@ -91,3 +91,7 @@ add_test(NAME mms_1d_large_linear_fails_cleanly
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/verification/sweep.py
     --exe $<TARGET_FILE:dealii-mpm> --problems mms_1d_large
     --configs USL-FLIP --ladder coarse --check --expect-growth)
+add_test(NAME mms_2d_3d_order
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/verification/sweep.py
+    --exe $<TARGET_FILE:dealii-mpm> --problems mms_2d_small,mms_3d_small
+    --configs USL-FLIP --ladder coarse --check --min-order 1.8)
