@@ -345,10 +345,19 @@ namespace mpm
               p->set_reference_location(xi);
             else if (there == BackgroundGrid<dim>::invalid)
               {
-                if (policy == OutOfGridPolicy::stop)
+                // A NaN position is an unstable run, not a point that left:
+                // it must never be removed quietly.
+                const bool finite =
+                  std::isfinite(p->get_location().norm_square());
+                if (!finite || policy == OutOfGridPolicy::stop)
                   {
                     if (failure.empty())
-                      failure = describe_leaving_point(p);
+                      failure = finite ? describe_leaving_point(p)
+                                       : "material point " +
+                                           std::to_string(p->get_id()) +
+                                           " has a non-finite position; the "
+                                           "run is unstable (try a smaller "
+                                           "CFL number, MUSL, or damping)";
                     continue;
                   }
                 removals.push_back(p);
