@@ -4,6 +4,7 @@
 
 #include <mpm/parameters.h>
 
+#include <iostream>
 #include <sstream>
 
 namespace mpm
@@ -236,6 +237,11 @@ namespace mpm
       std::string text;
       for (const auto &e : expressions)
         text += (text.empty() ? "" : "; ") + e;
+      // deal.II prints muparser's diagnosis to std::cerr before it throws;
+      // capture it so that the user gets one line, with its gist.
+      std::ostringstream captured;
+      std::streambuf    *cerr_buffer = std::cerr.rdbuf(captured.rdbuf());
+      std::string        problem;
       try
         {
           f->initialize(FunctionParser<dim>::default_variable_names() + ",t",
@@ -248,11 +254,20 @@ namespace mpm
         }
       catch (...)
         {
-          throw InputError(parameter,
-                           text,
-                           "is not a valid expression in x, y, z, t and the "
-                           "names of 'Simulation/constants'");
+          problem = "is not a valid expression in x, y, z, t and the names "
+                    "of 'Simulation/constants'";
+          const std::string text_seen = captured.str();
+          const auto        m         = text_seen.find("Message:");
+          if (m != std::string::npos)
+            problem +=
+              " (" +
+              Utilities::trim(
+                text_seen.substr(m + 8, text_seen.find('\n', m) - m - 8)) +
+              ")";
         }
+      std::cerr.rdbuf(cerr_buffer);
+      if (!problem.empty())
+        throw InputError(parameter, text, problem);
       return f;
     }
 

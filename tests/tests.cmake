@@ -61,6 +61,11 @@ mpm_test(bad_malformed_file PRM malformed.prm EXIT 1
   ERROR "input error: .*[Ll]ine <?4>?")
 mpm_test(bad_missing_file PRM does_not_exist.prm EXIT 1
   ERROR "input error: .*does_not_exist.prm")
+mpm_test(bad_expression PRM ${base} EXIT 1
+  ARGS -s "Bodies/Body 0/initial velocity=0.1*foo(x)"
+  ERROR "parameter 'Bodies/Body 0/initial velocity' = '0.1\\*foo\\(x\\)[^']*': is not a valid expression .*foo")
+mpm_test(bad_constants PRM ${base} EXIT 1 ARGS -s "Simulation/constants=G 3"
+  ERROR "parameter 'Simulation/constants' = 'G 3': must be a comma-separated list of name=number")
 mpm_test(bad_fixed_time_step PRM ${base} EXIT 1 ARGS -s "Simulation/time step=0.1"
   ERROR "parameter 'Simulation/time step' = '0.1.*exceeds the stability limit")
 mpm_test(leaving_grid_stop PRM leaving_grid.prm EXIT 2
