@@ -52,6 +52,17 @@ namespace mpm
 
 
   template <int dim>
+  Tensor<1, dim>
+  GridParameters<dim>::cell_size() const
+  {
+    Tensor<1, dim> h;
+    for (unsigned int d = 0; d < dim; ++d)
+      h[d] = (upper_corner[d] - lower_corner[d]) / n_cells[d];
+    return h;
+  }
+
+
+  template <int dim>
   void
   GridParameters<dim>::parse_parameters(ParameterHandler &prm)
   {
@@ -134,11 +145,9 @@ namespace mpm
           connection.disconnect();
         }
 
+    h = prm.cell_size();
     for (unsigned int d = 0; d < dim; ++d)
-      {
-        h[d]     = (prm.upper_corner[d] - prm.lower_corner[d]) / prm.n_cells[d];
-        inv_h[d] = 1. / h[d];
-      }
+      inv_h[d] = 1. / h[d];
 
     dofs.reinit(*tria);
     dofs.distribute_dofs(fe);

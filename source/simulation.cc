@@ -66,12 +66,8 @@ namespace mpm
                                           TimerOutput::never,
                                           TimerOutput::wall_times);
     // Balance the ranks by the material points each cell will hold.
-    Tensor<1, dim> h;
-    for (unsigned int d = 0; d < dim; ++d)
-      h[d] =
-        (grid_parameters.upper_corner[d] - grid_parameters.lower_corner[d]) /
-        grid_parameters.n_cells[d];
-    grid = std::make_unique<BackgroundGrid<dim>>(
+    const Tensor<1, dim> h = grid_parameters.cell_size();
+    grid                   = std::make_unique<BackgroundGrid<dim>>(
       grid_parameters, comm, [&](const Point<dim> &cell_origin) {
         unsigned int n = 0;
         for (const auto &body : body_parameters)

@@ -129,14 +129,6 @@ namespace mpm
             }
         }
     }
-
-
-    template <int dim>
-    inline bool
-    is_finite(const Tensor<1, dim> &v)
-    {
-      return std::isfinite(v.norm_square());
-    }
   } // namespace
 
 

@@ -41,6 +41,10 @@ namespace mpm
     Point<dim>                        upper_corner;
     std::array<unsigned int, dim>     n_cells;
     std::array<BoundaryType, 2 * dim> boundary; ///< x-, x+, y-, y+, z-, z+
+
+    /// Size of a cell in each direction.
+    Tensor<1, dim>
+    cell_size() const;
   };
 
 

@@ -16,8 +16,8 @@ namespace mpm
    * offset of deal.II's per-particle property array. Assembled once from
    * what the scene uses, so that a scene carries no field it does not need:
    * the deformation gradient only if a material asks for it, the initial
-   * position only if displacement is written or checked, material state
-   * only for materials that have some.
+   * position only if displacement is written or checked. (Material state
+   * variables will be added here when the first model that has some lands.)
    */
   struct FieldLayout
   {
@@ -31,8 +31,6 @@ namespace mpm
     unsigned int body                 = absent; ///< 1, body index
     unsigned int deformation_gradient = absent; ///< dim*dim, optional
     unsigned int initial_position     = absent; ///< dim, optional
-    unsigned int state                = absent; ///< material state, optional
-    unsigned int n_state              = 0;
     unsigned int n_properties         = 0;
 
     /// Reserve @p n consecutive slots and return the first.

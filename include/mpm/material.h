@@ -34,13 +34,6 @@ namespace mpm
     virtual bool
     needs_deformation_gradient() const = 0;
 
-    /// Number and names of per-point state variables (written to output).
-    virtual std::vector<std::string>
-    state_names() const
-    {
-      return {};
-    }
-
     /// Small-strain p-wave modulus lambda + 2 mu, for the CFL time step.
     virtual double
     p_wave_modulus() const = 0;
