@@ -216,28 +216,42 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       n_total *= prm.n_cells[d];
     cells.resize(n_total);
-    local_nodes_of_cell.resize(n_total);
     cartesian_index_of_active_cell.assign(tria->n_active_cells(), invalid);
+    unsigned int n_nodes = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_nodes *= prm.n_cells[d] + 1;
+    local_node_of_cartesian.assign(n_nodes, invalid);
 
-    std::vector<types::global_dof_index> dof_indices(nodes_per_cell);
+    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
     for (const auto &cell : tria->active_cell_iterators())
       {
         Point<dim>         reference;
         const unsigned int index = locate(cell->center(), reference);
         cells[index]             = cell;
         cartesian_index_of_active_cell[cell->active_cell_index()] = index;
-        if (!cell->is_locally_owned())
+        if (cell->is_artificial())
           continue;
-        owned_cells.push_back(index);
-        // FE_Q(1) numbers its dofs like the vertices: lexicographically.
+        if (cell->is_locally_owned())
+          owned_cells.push_back(index);
+        // FE_Q(1) numbers its dofs like the vertices: lexicographically,
+        // bit d of v set for the upper vertex in direction d.
         typename DoFHandler<dim>::active_cell_iterator dof_cell(&*tria,
                                                                 cell->level(),
                                                                 cell->index(),
                                                                 &dofs);
         dof_cell->get_dof_indices(dof_indices);
-        for (unsigned int v = 0; v < nodes_per_cell; ++v)
-          local_nodes_of_cell[index][v] =
-            scalar_partitioner->global_to_local(dof_indices[v]);
+        const auto c = cell_coordinates(index);
+        for (unsigned int v = 0; v < dof_indices.size(); ++v)
+          {
+            unsigned int node = 0, stride = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                node += (c[d] + ((v >> d) & 1u)) * stride;
+                stride *= prm.n_cells[d] + 1;
+              }
+            local_node_of_cartesian[node] =
+              scalar_partitioner->global_to_local(dof_indices[v]);
+          }
       }
     // Lexicographic order keeps neighbouring cells, and so the nodal data
     // they touch, close in memory during the particle loops.

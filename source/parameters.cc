@@ -231,9 +231,10 @@ namespace mpm
     std::unique_ptr<FunctionParser<dim>>
     vector_function(const std::vector<std::string>      &expressions,
                     const std::map<std::string, double> &constants,
-                    const std::string                   &parameter)
+                    const std::string                   &parameter,
+                    const double                         difference_step)
     {
-      auto        f = std::make_unique<FunctionParser<dim>>(dim);
+      auto f = std::make_unique<FunctionParser<dim>>(dim, 0., difference_step);
       std::string text;
       for (const auto &e : expressions)
         text += (text.empty() ? "" : "; ") + e;
@@ -275,15 +276,18 @@ namespace mpm
     template std::unique_ptr<FunctionParser<1>>
     vector_function<1>(const std::vector<std::string> &,
                        const std::map<std::string, double> &,
-                       const std::string &);
+                       const std::string &,
+                       const double);
     template std::unique_ptr<FunctionParser<2>>
     vector_function<2>(const std::vector<std::string> &,
                        const std::map<std::string, double> &,
-                       const std::string &);
+                       const std::string &,
+                       const double);
     template std::unique_ptr<FunctionParser<3>>
     vector_function<3>(const std::vector<std::string> &,
                        const std::map<std::string, double> &,
-                       const std::string &);
+                       const std::string &,
+                       const double);
     template Point<1>
     point<1>(const ParameterHandler &,
              const std::string &,

@@ -74,14 +74,18 @@ namespace mpm
           n += body.count_seeds(cell_origin, h);
         return n;
       });
-    bool store_initial_position =
+    FieldRequests fields;
+    fields.initial_position =
       output_parameters.writes("displacement") ||
       Verification<dim>::needs_initial_position(verification_parameters);
     for (const auto &body : body_parameters)
-      store_initial_position = store_initial_position || body.body_force;
-    points = std::make_unique<MaterialPoints<dim>>(*grid,
+      fields.initial_position = fields.initial_position || body.body_force;
+    fields.deformation_gradient =
+      integrator_parameters.basis == BasisType::cpgimp;
+    fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
+    points                 = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,
-                                                   store_initial_position,
+                                                   fields,
                                                    comm);
     points->generate();
     integrator = std::make_unique<TimeIntegrator<dim>>(

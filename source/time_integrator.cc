@@ -38,6 +38,24 @@ namespace mpm
                       "When stresses are updated: USL (last, from the new "
                       "grid velocity), USF (first) or MUSL (last, from "
                       "particle velocities mapped back to the grid).");
+    prm.declare_entry("basis",
+                      "linear",
+                      Patterns::Selection("linear|uGIMP|cpGIMP|quadratic "
+                                          "B-spline|cubic B-spline"),
+                      "Shape functions between points and grid nodes: "
+                      "linear, uGIMP (each point a domain of h / points per "
+                      "cell), cpGIMP (that domain stretched with F), "
+                      "quadratic B-spline or cubic B-spline. The smoother "
+                      "ones reduce the error of points crossing cell faces; "
+                      "B-splines are folded at the grid boundary so that "
+                      "walls hold.");
+    prm.declare_entry("transfer",
+                      "FLIP",
+                      Patterns::Selection("FLIP|APIC"),
+                      "Velocity transfer: FLIP (the PIC/FLIP blend set by "
+                      "'FLIP fraction') or APIC (points carry an affine "
+                      "velocity; conserves angular momentum; 'FLIP "
+                      "fraction' is then not used).");
     prm.declare_entry("FLIP fraction",
                       "0.99",
                       Patterns::Anything(),
@@ -84,6 +102,13 @@ namespace mpm
     scheme                        = scheme_name == "USL"   ? UpdateScheme::USL
                                     : scheme_name == "USF" ? UpdateScheme::USF
                                                            : UpdateScheme::MUSL;
+    const std::string basis_name  = prm.get("basis");
+    basis                         = basis_name == "linear" ? BasisType::linear
+                                    : basis_name == "uGIMP" ? BasisType::uniform_gimp
+                                    : basis_name == "cpGIMP" ? BasisType::cpgimp
+                                    : basis_name == "quadratic B-spline" ? BasisType::quadratic_bspline
+                                                                         : BasisType::cubic_bspline;
+    transfer = prm.get("transfer") == "APIC" ? Transfer::apic : Transfer::flip;
     flip_fraction = Parse::bounded_double(prm, s, "FLIP fraction", 0, 1);
     gravity       = Parse::vector<dim>(prm, s, "gravity");
     damping       = Parse::bounded_double(prm, s, "damping", 0, 1e300);
@@ -96,40 +121,85 @@ namespace mpm
 
 
 
-  namespace
+  /**
+   * Visit every locally owned point cell by cell with its stencil: the
+   * nodes it touches (as local indices of the nodal vectors), the basis
+   * weights and gradients at its position. Every particle loop of the step
+   * goes through here, so the stencil is evaluated the same way everywhere.
+   */
+  template <int dim>
+  template <typename Basis, typename Kernel>
+  inline void
+  TimeIntegrator<dim>::for_each_point(const Basis &basis, const Kernel &kernel)
   {
-    /**
-     * Visit every locally owned point cell by cell, with the nodes of its
-     * cell and the basis weights and gradients at its position. Every
-     * particle loop of the step goes through here, so the stencil is
-     * evaluated the same way everywhere.
-     */
-    template <int dim, typename Kernel>
-    inline void
-    for_each_point(const BackgroundGrid<dim>       &grid,
-                   Particles::ParticleHandler<dim> &particles,
-                   const Kernel                    &kernel)
-    {
-      using Basis = LinearBasis<dim>;
-      std::array<double, Basis::n_nodes>         w;
-      std::array<Tensor<1, dim>, Basis::n_nodes> grad;
-      const Tensor<1, dim> &inv_h = grid.inverse_cell_size();
-      for (const unsigned int index : grid.locally_owned_cells())
-        {
-          const auto        &cell = grid.cell(index);
-          const unsigned int n    = particles.n_particles_in_cell(cell);
-          if (n == 0)
-            continue;
-          const auto &nodes = grid.cell_nodes(index);
-          auto        p     = particles.particles_in_cell(cell).begin();
-          for (unsigned int i = 0; i < n; ++i, ++p)
-            {
-              Basis::evaluate(p->get_reference_location(), inv_h, w, grad);
-              kernel(p, p->get_properties().data(), nodes, w, grad);
-            }
-        }
-    }
-  } // namespace
+    typename Basis::Stencil s;
+    Tensor<1, dim>          half_width;
+    // The node lists of the patterns seen so far in the current cell: the
+    // lookup of nodal-vector indices is done once per cell and pattern.
+    std::array<std::array<unsigned int, Basis::n_nodes>, Basis::n_patterns>
+                                     nodes;
+    Particles::ParticleHandler<dim> &particles = points.handler();
+    for (const unsigned int index : grid.locally_owned_cells())
+      {
+        const auto        &cell = grid.cell(index);
+        const unsigned int n    = particles.n_particles_in_cell(cell);
+        if (n == 0)
+          continue;
+        const auto   cell_coordinates = grid.cell_coordinates(index);
+        unsigned int known_patterns   = 0;
+        auto         p = particles.particles_in_cell(cell).begin();
+        for (unsigned int i = 0; i < n; ++i, ++p)
+          {
+            double *q = p->get_properties().data();
+            if constexpr (Basis::needs_half_width)
+              half_width = domain_half_width(q);
+            basis.evaluate(cell_coordinates,
+                           p->get_reference_location(),
+                           half_width,
+                           s);
+            auto &list = nodes[s.pattern];
+            if (!(known_patterns & (1u << s.pattern)))
+              {
+                basis.node_pattern(cell_coordinates, s, list);
+                for (auto &node : list)
+                  node = grid.local_node(node);
+                known_patterns |= 1u << s.pattern;
+              }
+            s.nodes = list.data();
+            kernel(p, q, s);
+          }
+      }
+  }
+
+
+  template <int dim>
+  inline Tensor<1, dim>
+  TimeIntegrator<dim>::domain_half_width(const double *q) const
+  {
+    const FieldLayout &l  = points.layout();
+    const double       l0 = initial_half_width_of_body[q[l.body]];
+    Tensor<1, dim>     half_width;
+    if (prm.basis == BasisType::cpgimp)
+      {
+        // The axis-aligned box around the deformed domain F [-l0, l0]^dim:
+        // exact for stretches along the axes, and never degenerate under
+        // rotation (the diagonal of F alone would vanish at 90 degrees).
+        // It is capped at half a cell, where the GIMP stencil ends.
+        const Tensor<1, dim> &h = grid.cell_size();
+        const double         *F = q + l.deformation_gradient;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            double extent = 0;
+            for (unsigned int e = 0; e < dim; ++e)
+              extent += std::abs(F[d * dim + e]) * h[e];
+            half_width[d] = std::clamp(l0 * extent / h[d], 1e-6, 0.5);
+          }
+      }
+    else
+      for (unsigned int d = 0; d < dim; ++d)
+        half_width[d] = l0;
+    return half_width;
+  }
 
 
 
@@ -155,6 +225,24 @@ namespace mpm
         has_body_forces = has_body_forces || body.body_force;
       }
     min_nodal_mass = prm.small_mass_fraction * points.min_particle_mass();
+    for (const auto &body : points.bodies())
+      initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
+    Assert(prm.basis != BasisType::cpgimp ||
+             points.layout().deformation_gradient != FieldLayout::absent,
+           ExcMessage("cpGIMP needs the deformation gradient"));
+    Assert(prm.transfer != Transfer::apic ||
+             points.layout().affine_velocity != FieldLayout::absent,
+           ExcMessage("APIC needs the affine velocity field"));
+
+    // The cubic B-spline's stencil spans two cells on each side of a
+    // point's node; the boundary folding needs a second grid node inside.
+    if (prm.basis == BasisType::cubic_bspline)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (grid.parameters().n_cells[d] < 2)
+          throw InputError("Simulation/basis",
+                           "cubic B-spline",
+                           "needs at least 2 grid cells in every direction "
+                           "('Grid/cells')");
 
     if (prm.fixed_time_step > 0)
       {
@@ -195,35 +283,10 @@ namespace mpm
       }
     dt = std::min(dt, max_dt);
 
-    switch (prm.scheme)
-      {
-        case UpdateScheme::USL:
-          scatter_to_grid(true, true);
-          grid_velocities_from_momentum(v_old);
-          grid_velocities_after_forces(dt);
-          gather_to_particles(dt, true);
-          update_stresses(dt);
-          break;
-        case UpdateScheme::USF:
-          scatter_to_grid(true, false);
-          grid_velocities_from_momentum(v_old);
-          update_kinematics(dt, v_old);
-          update_stresses(dt);
-          scatter_to_grid(false, true);
-          grid_velocities_after_forces(dt);
-          gather_to_particles(dt, false);
-          break;
-        case UpdateScheme::MUSL:
-          scatter_to_grid(true, true);
-          grid_velocities_from_momentum(v_old);
-          grid_velocities_after_forces(dt);
-          gather_to_particles(dt, false);
-          scatter_to_grid(true, false);
-          grid_velocities_from_momentum(v_new);
-          update_kinematics(dt, v_new);
-          update_stresses(dt);
-          break;
-      }
+    with_basis<dim>(prm.basis, [&](auto *tag) {
+      using Basis = std::remove_pointer_t<decltype(tag)>;
+      advance(Basis(grid.parameters().n_cells, grid.cell_size()), dt);
+    });
     raise_if_any_failed(failure, comm);
 
     {
@@ -233,6 +296,60 @@ namespace mpm
     t += dt;
     last_dt = dt;
     ++n_steps;
+  }
+
+
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::advance(const Basis &basis, const double dt)
+  {
+    switch (prm.scheme)
+      {
+        case UpdateScheme::USL:
+          scatter_to_grid(basis, true, true);
+          grid_velocities_from_momentum(v_old);
+          grid_velocities_after_forces(dt);
+          gather_to_particles(basis, dt, true);
+          update_stresses(dt);
+          break;
+        case UpdateScheme::USF:
+          scatter_to_grid(basis, true, false);
+          grid_velocities_from_momentum(v_old);
+          update_kinematics(basis, dt, v_old);
+          update_stresses(dt);
+          scatter_to_grid(basis, false, true);
+          grid_velocities_after_forces(dt);
+          gather_to_particles(basis, dt, false);
+          break;
+        case UpdateScheme::MUSL:
+          scatter_to_grid(basis, true, true);
+          grid_velocities_from_momentum(v_old);
+          grid_velocities_after_forces(dt);
+          gather_to_particles(basis, dt, false);
+          scatter_to_grid(basis, true, false);
+          grid_velocities_from_momentum(v_new);
+          update_kinematics(basis, dt, v_new);
+          update_stresses(dt);
+          break;
+      }
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::transfer_round_trip()
+  {
+    with_basis<dim>(prm.basis, [&](auto *tag) {
+      using Basis = std::remove_pointer_t<decltype(tag)>;
+      const Basis basis(grid.parameters().n_cells, grid.cell_size());
+      scatter_to_grid(basis, true, false);
+      grid_velocities_from_momentum(v_old);
+      // No force, no step: the new grid velocity is the old one.
+      grid_velocities_from_momentum(v_new);
+      gather_to_particles(basis, 0., false);
+    });
+    raise_if_any_failed(failure, comm);
   }
 
 
@@ -278,9 +395,11 @@ namespace mpm
 
 
   template <int dim>
+  template <typename Basis>
   void
-  TimeIntegrator<dim>::scatter_to_grid(const bool mass_and_momentum,
-                                       const bool forces)
+  TimeIntegrator<dim>::scatter_to_grid(const Basis &basis,
+                                       const bool   mass_and_momentum,
+                                       const bool   forces)
   {
     TimerOutput::Scope scope(timer, "P2G");
     double            *g = grid_sums.get_values();
@@ -299,48 +418,46 @@ namespace mpm
 
     const FieldLayout   &l       = points.layout();
     const Tensor<1, dim> gravity = prm.gravity;
+    const bool           apic    = prm.transfer == Transfer::apic;
     for (auto *f : body_forces)
       if (f != nullptr)
         f->set_time(t);
-    for_each_point(grid,
-                   points.handler(),
-                   [&](auto &,
-                       const double *q,
-                       const auto   &nodes,
-                       const auto   &w,
-                       const auto   &grad) {
-                     const double m = q[l.mass];
-                     if (mass_and_momentum)
-                       {
-                         const Tensor<1, dim> mv =
-                           m * Fields::vector<dim>(q + l.velocity);
-                         for (unsigned int v = 0; v < nodes.size(); ++v)
-                           {
-                             double *node = g + n_sums * nodes[v];
-                             node[mass] += w[v] * m;
-                             for (unsigned int d = 0; d < dim; ++d)
-                               node[momentum + d] += w[v] * mv[d];
-                           }
-                       }
-                     if (forces)
-                       {
-                         // Internal force with the current volume and Cauchy
-                         // stress.
-                         const SymmetricTensor<2, dim> Vsigma =
-                           q[l.volume] * Fields::symmetric<dim>(q + l.stress);
-                         const Tensor<1, dim> mg =
-                           m * (has_body_forces ? gravity + body_force(q)
-                                                : gravity);
-                         for (unsigned int v = 0; v < nodes.size(); ++v)
-                           {
-                             const Tensor<1, dim> f =
-                               w[v] * mg - Vsigma * grad[v];
-                             double *node = g + n_sums * nodes[v] + force;
-                             for (unsigned int d = 0; d < dim; ++d)
-                               node[d] += f[d];
-                           }
-                       }
-                   });
+    for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+      const double m = q[l.mass];
+      if (mass_and_momentum)
+        {
+          const Tensor<1, dim> mv = m * Fields::vector<dim>(q + l.velocity);
+          // APIC: the point's velocity field v_p + C_p (x - x_p), sampled
+          // at the node.
+          Tensor<2, dim> mC;
+          if (apic)
+            mC = m * Fields::tensor<dim>(q + l.affine_velocity);
+          for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+            {
+              double              *node = g + n_sums * s.nodes[v];
+              const Tensor<1, dim> p = apic ? mv + mC * s.node_offset(v) : mv;
+              node[mass] += s.weights[v] * m;
+              for (unsigned int d = 0; d < dim; ++d)
+                node[momentum + d] += s.weights[v] * p[d];
+            }
+        }
+      if (forces)
+        {
+          // Internal force with the current volume and Cauchy stress.
+          const SymmetricTensor<2, dim> Vsigma =
+            q[l.volume] * Fields::symmetric<dim>(q + l.stress);
+          const Tensor<1, dim> mg =
+            m * (has_body_forces ? gravity + body_force(q) : gravity);
+          for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+            {
+              const Tensor<1, dim> f =
+                s.weights[v] * mg - Vsigma * s.gradients[v];
+              double *node = g + n_sums * s.nodes[v] + force;
+              for (unsigned int d = 0; d < dim; ++d)
+                node[d] += f[d];
+            }
+        }
+    });
     grid_sums.compress(VectorOperation::add);
   }
 
@@ -418,86 +535,97 @@ namespace mpm
 
 
   template <int dim>
-  template <typename Nodes, typename Weights, typename Gradients>
+  template <typename Stencil>
   inline Tensor<2, dim>
-  TimeIntegrator<dim>::velocity_gradient(const Nodes       &nodes,
-                                         const Weights     &w,
-                                         const Gradients   &grad,
+  TimeIntegrator<dim>::velocity_gradient(const Stencil     &s,
                                          const unsigned int slot) const
   {
     const double  *u = grid_velocity.get_values();
     Tensor<1, dim> v_point;
-    for (unsigned int v = 0; v < nodes.size(); ++v)
-      v_point += w[v] * Fields::vector<dim>(u + n_velocities * nodes[v] + slot);
+    for (unsigned int v = 0; v < s.weights.size(); ++v)
+      v_point += s.weights[v] *
+                 Fields::vector<dim>(u + n_velocities * s.nodes[v] + slot);
     // Sum of (v_I - v_point) grad phi_I: equal to sum v_I grad phi_I, since
     // the gradients sum to zero, but light nodes can now be left out.
     Tensor<2, dim> L;
-    for (unsigned int v = 0; v < nodes.size(); ++v)
+    for (unsigned int v = 0; v < s.weights.size(); ++v)
       {
-        const double *node = u + n_velocities * nodes[v];
+        const double *node = u + n_velocities * s.nodes[v];
         if (node[node_mass] > min_nodal_mass)
-          L +=
-            outer_product(Fields::vector<dim>(node + slot) - v_point, grad[v]);
+          L += outer_product(Fields::vector<dim>(node + slot) - v_point,
+                             s.gradients[v]);
       }
     return L;
   }
 
 
   template <int dim>
+  template <typename Basis>
   void
-  TimeIntegrator<dim>::gather_to_particles(const double dt,
+  TimeIntegrator<dim>::gather_to_particles(const Basis &basis,
+                                           const double dt,
                                            const bool   kinematics)
   {
-    TimerOutput::Scope scope(timer, "G2P");
-    const FieldLayout &l     = points.layout();
-    const double      *u     = grid_velocity.get_values();
-    const double       alpha = prm.flip_fraction;
-    for_each_point(grid,
-                   points.handler(),
-                   [&](auto       &p,
-                       double     *q,
-                       const auto &nodes,
-                       const auto &w,
-                       const auto &grad) {
-                     Tensor<1, dim> v_grid, dv_grid;
-                     for (unsigned int v = 0; v < nodes.size(); ++v)
-                       {
-                         const Tensor<1, dim> a = Fields::vector<dim>(
-                           u + n_velocities * nodes[v] + v_old);
-                         const Tensor<1, dim> b = Fields::vector<dim>(
-                           u + n_velocities * nodes[v] + v_new);
-                         v_grid += w[v] * b;
-                         dv_grid += w[v] * (b - a);
-                       }
-                     const Tensor<1, dim> v_p =
-                       Fields::vector<dim>(q + l.velocity);
-                     const Tensor<1, dim> v_new_p =
-                       alpha * (v_p + dv_grid) + (1. - alpha) * v_grid;
-                     Fields::store(v_new_p, q + l.velocity);
-                     p->set_location(p->get_location() + dt * v_grid);
-                     if (kinematics)
-                       apply_velocity_gradient(
-                         p, q, velocity_gradient(nodes, w, grad, v_new), dt);
-                   });
+    TimerOutput::Scope                         scope(timer, "G2P");
+    const FieldLayout                         &l = points.layout();
+    const double                              *u = grid_velocity.get_values();
+    const double                               alpha = prm.flip_fraction;
+    std::array<Tensor<1, dim>, Basis::n_nodes> affine;
+    // Compiled once for each transfer, so that the PIC/FLIP loop carries
+    // nothing of APIC's.
+    auto gather = [&](auto apic) {
+      for_each_point(basis, [&](auto &p, double *q, const auto &s) {
+        Tensor<1, dim> v_grid, dv_grid;
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          {
+            const double        *node = u + n_velocities * s.nodes[v];
+            const Tensor<1, dim> a    = Fields::vector<dim>(node + v_old);
+            const Tensor<1, dim> b    = Fields::vector<dim>(node + v_new);
+            v_grid += s.weights[v] * b;
+            dv_grid += s.weights[v] * (b - a);
+          }
+        if constexpr (decltype(apic)::value)
+          {
+            // v_p is the grid velocity at the point; C_p = B_p D_p^{-1}.
+            basis.affine_weights(s, affine);
+            Tensor<2, dim> C;
+            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+              C += outer_product(Fields::vector<dim>(
+                                   u + n_velocities * s.nodes[v] + v_new),
+                                 affine[v]);
+            Fields::store(v_grid, q + l.velocity);
+            Fields::store(C, q + l.affine_velocity);
+          }
+        else
+          {
+            const Tensor<1, dim> v_p = Fields::vector<dim>(q + l.velocity);
+            Fields::store(Tensor<1, dim>(alpha * (v_p + dv_grid) +
+                                         (1. - alpha) * v_grid),
+                          q + l.velocity);
+          }
+        p->set_location(p->get_location() + dt * v_grid);
+        if (kinematics)
+          apply_velocity_gradient(p, q, velocity_gradient(s, v_new), dt);
+      });
+    };
+    if (prm.transfer == Transfer::apic)
+      gather(std::true_type());
+    else
+      gather(std::false_type());
   }
 
 
   template <int dim>
+  template <typename Basis>
   void
-  TimeIntegrator<dim>::update_kinematics(const double       dt,
+  TimeIntegrator<dim>::update_kinematics(const Basis       &basis,
+                                         const double       dt,
                                          const unsigned int slot)
   {
     TimerOutput::Scope scope(timer, "G2P");
-    for_each_point(grid,
-                   points.handler(),
-                   [&](auto       &p,
-                       double     *q,
-                       const auto &nodes,
-                       const auto &w,
-                       const auto &grad) {
-                     apply_velocity_gradient(
-                       p, q, velocity_gradient(nodes, w, grad, slot), dt);
-                   });
+    for_each_point(basis, [&](auto &p, double *q, const auto &s) {
+      apply_velocity_gradient(p, q, velocity_gradient(s, slot), dt);
+    });
   }
 
 

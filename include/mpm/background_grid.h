@@ -63,7 +63,6 @@ namespace mpm
   class BackgroundGrid
   {
   public:
-    static constexpr unsigned int nodes_per_cell = 1u << dim;
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
 
     /// @p work_estimate, if given, says how much work a cell (given by its
@@ -138,12 +137,29 @@ namespace mpm
       return owned_cells;
     }
 
-    /// Local node indices (into a scalar layout) of the vertices of a
-    /// locally owned cell, in deal.II's lexicographic vertex order.
-    const std::array<unsigned int, nodes_per_cell> &
-    cell_nodes(const unsigned int cartesian_index) const
+    /// Cartesian indices (i, j, k) of the cell with lexicographic index
+    /// @p index.
+    std::array<unsigned int, dim>
+    cell_coordinates(unsigned int index) const
     {
-      return local_nodes_of_cell[cartesian_index];
+      std::array<unsigned int, dim> c;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          c[d] = index % prm.n_cells[d];
+          index /= prm.n_cells[d];
+        }
+      return c;
+    }
+
+    /// Local index (into a scalar layout) of the node with lexicographic
+    /// index @p cartesian_node, for every node of the locally owned and
+    /// ghost cells: the stencils of all bases stay within them, because a
+    /// point's nodes belong to its cell or to the cells next to it.
+    /// Other nodes give invalid.
+    unsigned int
+    local_node(const unsigned int cartesian_node) const
+    {
+      return local_node_of_cartesian[cartesian_node];
     }
 
     /// Partitioner for @p n_components interleaved values per node.
@@ -189,8 +205,8 @@ namespace mpm
     std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
     std::vector<unsigned int> cartesian_index_of_active_cell;
     std::vector<unsigned int> owned_cells;
-    std::vector<std::array<unsigned int, nodes_per_cell>> local_nodes_of_cell;
-    std::vector<std::pair<unsigned int, unsigned int>>    node_constraints;
+    std::vector<unsigned int> local_node_of_cartesian;
+    std::vector<std::pair<unsigned int, unsigned int>> node_constraints;
   };
 } // namespace mpm
 

@@ -16,7 +16,8 @@ namespace mpm
    * offset of deal.II's per-particle property array. Assembled once from
    * what the scene uses, so that a scene carries no field it does not need:
    * the deformation gradient only if a material asks for it, the initial
-   * position only if displacement is written or checked. (Material state
+   * position only if displacement is written or checked (or a body force
+   * needs it), the affine velocity only with APIC. (Material state
    * variables will be added here when the first model that has some lands.)
    */
   struct FieldLayout
@@ -31,6 +32,7 @@ namespace mpm
     unsigned int body                 = absent; ///< 1, body index
     unsigned int deformation_gradient = absent; ///< dim*dim, optional
     unsigned int initial_position     = absent; ///< dim, optional
+    unsigned int affine_velocity      = absent; ///< dim*dim, APIC's C_p
     unsigned int n_properties         = 0;
 
     /// Reserve @p n consecutive slots and return the first.
@@ -44,6 +46,15 @@ namespace mpm
 
     /// Names of the stored fields with their sizes, for the memory report.
     std::vector<std::pair<std::string, unsigned int>> description;
+  };
+
+
+  /// Fields that a scene needs beyond the ones every scene stores.
+  struct FieldRequests
+  {
+    bool initial_position     = false;
+    bool deformation_gradient = false; ///< also if no material needs it
+    bool affine_velocity      = false;
   };
 
 

@@ -86,8 +86,8 @@ namespace mpm
   public:
     MaterialPoints(const BackgroundGrid<dim>              &grid,
                    const std::vector<BodyParameters<dim>> &bodies,
-                   const bool store_initial_position,
-                   MPI_Comm   comm);
+                   const FieldRequests                    &requests,
+                   MPI_Comm                                comm);
 
     Particles::ParticleHandler<dim> &
     handler()
@@ -142,7 +142,7 @@ namespace mpm
 
   private:
     FieldLayout
-    assemble_layout(const bool store_initial_position) const;
+    assemble_layout(const FieldRequests &requests) const;
     std::string
     describe_leaving_point(
       const typename Particles::ParticleHandler<dim>::particle_iterator &p)

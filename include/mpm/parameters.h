@@ -107,11 +107,13 @@ namespace mpm
 
     /// A vector function of x, y, z and t from @p expressions; an
     /// expression that does not parse is an InputError naming @p parameter.
+    /// @p difference_step is the step of its finite-difference gradient.
     template <int dim>
     std::unique_ptr<FunctionParser<dim>>
     vector_function(const std::vector<std::string>      &expressions,
                     const std::map<std::string, double> &constants,
-                    const std::string                   &parameter);
+                    const std::string                   &parameter,
+                    const double difference_step = 1e-8);
   } // namespace Parse
 } // namespace mpm
 

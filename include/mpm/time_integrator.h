@@ -7,6 +7,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <mpm/background_grid.h>
+#include <mpm/basis.h>
 #include <mpm/material_points.h>
 
 namespace mpm
@@ -21,6 +22,13 @@ namespace mpm
     MUSL ///< USL with the updated particle momentum mapped back to the grid
   };
 
+  /// How velocities go from points to the grid and back.
+  enum class Transfer
+  {
+    flip, ///< PIC/FLIP blend, weighted by the FLIP fraction
+    apic  ///< affine particle-in-cell: points carry a velocity gradient C_p
+  };
+
   template <int dim>
   struct IntegratorParameters
   {
@@ -33,6 +41,8 @@ namespace mpm
     double          cfl_number;
     double          fixed_time_step; ///< 0: from the CFL condition
     UpdateScheme    scheme;
+    BasisType       basis;
+    Transfer        transfer;
     double          flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
     Tensor<1, dim>  gravity;
     double          damping; ///< mass-proportional, in 1/s
@@ -116,6 +126,12 @@ namespace mpm
       return grid_velocity.local_element(n_velocities * i + v_new + d);
     }
 
+    /// One P2G -> G2P round trip with no time step and no forces: what
+    /// the transfer alone does to the points' velocities (rigid rotation
+    /// test of APIC).
+    void
+    transfer_round_trip();
+
     /// Stable time step of the current state: CFL number times
     /// h / max(c_p + |v_p|). Also checks that every point is finite.
     double
@@ -128,30 +144,47 @@ namespace mpm
     static constexpr unsigned int node_mass = 0, v_old = 1, v_new = 1 + dim;
     static constexpr unsigned int n_velocities = 1 + 2 * dim;
 
+    /// The step with basis @p basis, in the order of the update scheme.
+    template <typename Basis>
     void
-    scatter_to_grid(const bool mass_and_momentum, const bool forces);
+    advance(const Basis &basis, const double dt);
+    template <typename Basis>
+    void
+    scatter_to_grid(const Basis &basis,
+                    const bool   mass_and_momentum,
+                    const bool   forces);
     void
     grid_velocities_from_momentum(const unsigned int slot);
     void
     grid_velocities_after_forces(const double dt);
+    template <typename Basis>
     void
-    gather_to_particles(const double dt, const bool kinematics);
+    gather_to_particles(const Basis &basis,
+                        const double dt,
+                        const bool   kinematics);
+    template <typename Basis>
     void
-    update_kinematics(const double dt, const unsigned int slot);
+    update_kinematics(const Basis       &basis,
+                      const double       dt,
+                      const unsigned int slot);
     void
     update_stresses(const double dt);
     void
     apply_velocity_constraints(const unsigned int slot);
+    /// Visit every locally owned point with its stencil (see there).
+    template <typename Basis, typename Kernel>
+    void
+    for_each_point(const Basis &basis, const Kernel &kernel);
+    /// Half-width of a point's domain in cells, per direction (GIMP).
+    Tensor<1, dim>
+    domain_half_width(const double *q) const;
     /// Body force per unit mass b(X, t) of a point (without gravity).
     Tensor<1, dim>
     body_force(const double *q) const;
     /// L at a point from the nodal velocities in @p slot (small-mass guard).
-    template <typename Nodes, typename Weights, typename Gradients>
+    template <typename Stencil>
     Tensor<2, dim>
-    velocity_gradient(const Nodes       &nodes,
-                      const Weights     &w,
-                      const Gradients   &grad,
-                      const unsigned int slot) const;
+    velocity_gradient(const Stencil &s, const unsigned int slot) const;
     /// Store L, update volume and F by I + dt L; note a failure if the
     /// point would invert.
     template <typename Iterator>
@@ -170,8 +203,11 @@ namespace mpm
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
     std::vector<double>                        wave_modulus_of_body;
-    std::vector<FunctionParser<dim> *>         body_forces; ///< null: none
-    bool                                       has_body_forces = false;
+    /// uGIMP/cpGIMP: initial domain half-width of each body's points, in
+    /// cells: half of 1 / (points per cell).
+    std::vector<double>                initial_half_width_of_body;
+    std::vector<FunctionParser<dim> *> body_forces; ///< null: none
+    bool                               has_body_forces = false;
 
     double                min_nodal_mass;
     double                t         = 0;
