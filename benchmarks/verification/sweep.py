@@ -56,9 +56,11 @@ def bar_position(n):
 
 
 def column(n):
+    # Two cells wide (the cubic B-spline needs two); slip walls make the
+    # width irrelevant to the exact solution.
     h = 1.25 / n
-    return ["Grid/cells=1, %d" % n, "Grid/upper corner=%.10g, 1.25" % h,
-            "Bodies/Body 0/upper corner=%.10g, 1" % h]
+    return ["Grid/cells=2, %d" % n, "Grid/upper corner=%.10g, 1.25" % (2 * h),
+            "Bodies/Body 0/upper corner=%.10g, 1" % (2 * h)]
 
 
 def disks(n):
@@ -118,25 +120,55 @@ PROBLEMS = {
                   "two disks, max |E(t) - E(0)| / E(0) (no exact field)"),
 }
 
-CONFIGS = {  # name: overrides
-    "USL-FLIP": ["Simulation/update scheme=USL", "Simulation/FLIP fraction=1"],
-    "USL-PIC": ["Simulation/update scheme=USL", "Simulation/FLIP fraction=0"],
-    "USF-FLIP": ["Simulation/update scheme=USF", "Simulation/FLIP fraction=1"],
-    "MUSL-FLIP": ["Simulation/update scheme=MUSL", "Simulation/FLIP fraction=1"],
-    "MUSL-PIC": ["Simulation/update scheme=MUSL", "Simulation/FLIP fraction=0"],
-}
+BASES = {  # short name: value of Simulation/basis
+    "linear": "linear", "uGIMP": "uGIMP", "cpGIMP": "cpGIMP",
+    "QBS": "quadratic B-spline", "CBS": "cubic B-spline"}
+SCHEMES = {"USL", "USF", "MUSL"}
+TRANSFERS = {"FLIP": ["Simulation/transfer=FLIP", "Simulation/FLIP fraction=1"],
+             "PIC": ["Simulation/transfer=FLIP", "Simulation/FLIP fraction=0"],
+             "APIC": ["Simulation/transfer=APIC"]}
+
+# The configurations of the full sweep, "basis:scheme-transfer". Any other
+# combination can be named with --configs.
+CONFIGS = ["linear:USL-FLIP", "linear:USL-PIC", "linear:USF-FLIP", "linear:MUSL-FLIP",
+           "linear:MUSL-PIC", "linear:MUSL-APIC"] + [
+    "%s:%s" % (b, c) for b in ("uGIMP", "cpGIMP", "QBS", "CBS")
+    for c in ("USL-FLIP", "USF-FLIP", "MUSL-FLIP", "MUSL-APIC")]
+
+
+def split_config(config):
+    """basis, scheme, transfer of "basis:scheme-transfer" (basis optional)."""
+    basis, _, rest = config.rpartition(":")
+    scheme, transfer = rest.split("-")
+    basis = basis or "linear"
+    if basis not in BASES or scheme not in SCHEMES or transfer not in TRANSFERS:
+        raise SystemExit("unknown configuration %r: use basis:scheme-transfer with basis "
+                         "in %s, scheme in %s, transfer in %s" % (
+                             config, sorted(BASES), sorted(SCHEMES), sorted(TRANSFERS)))
+    return basis, scheme, transfer
+
+
+def config_overrides(config):
+    basis, scheme, transfer = split_config(config)
+    return (["Simulation/basis=" + BASES[basis], "Simulation/update scheme=" + scheme]
+            + TRANSFERS[transfer])
+
+
+def config_name(row):
+    return "%s:%s-%s" % (row["basis"], row["scheme"], row["transfer"])
 
 
 def run(exe, problem, config, n, work):
     scene, overrides, _, h, label, _ = PROBLEMS[problem]
-    out = os.path.join(work, "%s-%s-%d" % (problem, config, n))
+    out = os.path.join(work, "%s-%s-%d" % (problem, config.replace(":", "-"), n))
     args = [exe, os.path.join(HERE, scene), "-s", "Output/directory=" + out,
             "-s", "Output/progress interval=1e9"]
-    for o in overrides(n) + CONFIGS[config]:
+    for o in overrides(n) + config_overrides(config):
         args += ["-s", o]
     p = subprocess.run(args, capture_output=True, text=True)
-    row = {"problem": problem, "dim": "", "basis": "linear",
-           "transfer": config.split("-")[1], "scheme": config.split("-")[0],
+    basis, scheme, transfer = split_config(config)
+    row = {"problem": problem, "dim": "", "basis": basis,
+           "transfer": transfer, "scheme": scheme,
            "cells": n, "h": h(n), "status": "ok" if p.returncode == 0 else "stopped"}
     m = re.search(r"Verification: " + re.escape(label) + r"[^=]*= *([-+0-9.eE]+|nan|inf)", p.stdout)
     row["error"] = float(m.group(1)) if m else float("nan")
@@ -171,6 +203,12 @@ def fitted_order(rows):
     return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
 
 
+def configs_in(rows):
+    """The configurations present in rows, in the order of CONFIGS first."""
+    present = set(config_name(r) for r in rows)
+    return [c for c in CONFIGS if c in present] + sorted(present - set(CONFIGS))
+
+
 def plots(rows, outdir):
     import matplotlib
     matplotlib.use("Agg")
@@ -180,20 +218,27 @@ def plots(rows, outdir):
         sel = [r for r in rows if r["problem"] == problem]
         if not sel:
             continue
-        fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4))
-        for config in CONFIGS:
-            rs = sorted([r for r in sel if "%s-%s" % (r["scheme"], r["transfer"]) == config
+        fig, (a, b) = plt.subplots(1, 2, figsize=(13, 5.5))
+        colours = dict(zip(BASES, ["C0", "C1", "C2", "C3", "C4"]))
+        styles = {"USL-FLIP": "o-", "USL-PIC": "v:", "USF-FLIP": "s--", "MUSL-FLIP": "^-",
+                  "MUSL-PIC": "<:", "MUSL-APIC": "D-.", "USL-APIC": "d-."}
+        for config in configs_in(sel):
+            rs = sorted([r for r in sel if config_name(r) == config
                          and r["status"] == "ok" and math.isfinite(r["error"])],
                         key=lambda r: -r["h"])
             if not rs:
                 continue
+            basis, scheme, transfer = split_config(config)
+            style = dict(color=colours[basis], markersize=4, linewidth=1)
+            fmt = styles.get("%s-%s" % (scheme, transfer), "x-")
             label = "%s (order %.2f)" % (config, fitted_order(rs))
-            a.loglog([r["h"] for r in rs], [r["error"] for r in rs], "o-", label=label)
-            b.loglog([r["wall_seconds"] for r in rs], [r["error"] for r in rs], "o-", label=config)
+            a.loglog([r["h"] for r in rs], [r["error"] for r in rs], fmt, label=label, **style)
+            b.loglog([r["wall_seconds"] for r in rs], [r["error"] for r in rs], fmt,
+                     label=config, **style)
         a.set_xlabel("cell size h"); a.set_ylabel("error"); a.invert_xaxis()
-        a.set_title(PROBLEMS[problem][5], fontsize=9); a.legend(fontsize=7)
+        a.set_title(PROBLEMS[problem][5], fontsize=9); a.legend(fontsize=6, ncol=2)
         b.set_xlabel("wall seconds (time steps only)"); b.set_ylabel("error")
-        b.set_title("speed against error", fontsize=9); b.legend(fontsize=7)
+        b.set_title("speed against error", fontsize=9)
         for ax in (a, b):
             ax.grid(True, which="both", alpha=0.3)
         fig.tight_layout()
@@ -212,13 +257,14 @@ def report(rows, images, path):
              "time steps only. Basis: linear (FE_Q(1)) for now; GIMP, B-splines and APIC",
              "join the sweep when they land (issue 4).", "",
              "## Observed orders (least-squares slope of log error against log h)", "",
-             "| problem | " + " | ".join(CONFIGS) + " |",
-             "|---|" + "---|" * len(CONFIGS)]
-    for problem in PROBLEMS:
+             ]
+    problems = [p for p in PROBLEMS if any(r["problem"] == p for r in rows)]
+    lines += ["| configuration | " + " | ".join(problems) + " |",
+              "|---|" + "---|" * len(problems)]
+    for config in configs_in(rows):
         cells = []
-        for config in CONFIGS:
-            rs = [r for r in rows if r["problem"] == problem and
-                  "%s-%s" % (r["scheme"], r["transfer"]) == config]
+        for problem in problems:
+            rs = [r for r in rows if r["problem"] == problem and config_name(r) == config]
             if not rs:
                 cells.append("")
                 continue
@@ -226,7 +272,7 @@ def report(rows, images, path):
             o = fitted_order(rs)
             cells.append(("%.2f" % o if math.isfinite(o) else "-") +
                          (" (%d stopped)" % stopped if stopped else ""))
-        lines.append("| %s | %s |" % (problem, " | ".join(cells)))
+        lines.append("| %s | %s |" % (config, " | ".join(cells)))
     lines += ["", "A negative order means the error grows under refinement.", "",
               "## What to pick (linear basis)", "",
               "- **Small deformation, no cell crossing** (elastic waves, the small-amplitude",
@@ -260,8 +306,8 @@ def report(rows, images, path):
                   "|---|---:|---:|---:|---:|"]
         for r in rows:
             if r["problem"] == problem:
-                lines.append("| %s-%s | %s | %s | %.3g | %s |" % (
-                    r["scheme"], r["transfer"], r["cells"],
+                lines.append("| %s | %s | %s | %.3g | %s |" % (
+                    config_name(r), r["cells"],
                     ("%.3e" % r["error"]) if r["status"] == "ok" else "stopped",
                     r["wall_seconds"], ("%.0f" % r["ns_per_particle_step"]) if r["ns_per_particle_step"] != "" else ""))
         lines.append("")
@@ -275,6 +321,8 @@ def main():
     ap.add_argument("--problems", default=",".join(PROBLEMS))
     ap.add_argument("--configs", default=",".join(CONFIGS))
     ap.add_argument("--ladder", default="full", choices=["coarse", "full"])
+    ap.add_argument("--cells", default=None,
+                    help="comma-separated cell counts instead of the ladder")
     ap.add_argument("--csv", default=None, help="write the rows here")
     ap.add_argument("--plots", action="store_true", help="PNGs and doc/verification.md")
     ap.add_argument("--check", action="store_true", help="assert the bounds below")
@@ -298,7 +346,9 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         for problem in a.problems.split(","):
             for config in a.configs.split(","):
-                for n in ([] if a.from_csv else PROBLEMS[problem][2][a.ladder]):
+                ladder = ([int(c) for c in a.cells.split(",")] if a.cells
+                          else PROBLEMS[problem][2][a.ladder])
+                for n in ([] if a.from_csv else ladder):
                     r = run(a.exe, problem, config, n, work)
                     rows.append(r)
                     print("%-20s %-10s cells %4d: error %-12.4g %s" % (
@@ -319,7 +369,7 @@ def main():
         for problem in a.problems.split(","):
             for config in a.configs.split(","):
                 rs = [r for r in rows if r["problem"] == problem and
-                      "%s-%s" % (r["scheme"], r["transfer"]) == config]
+                      config_name(r) == "%s:%s-%s" % split_config(config)]
                 order = fitted_order(rs)
                 finest = rs[-1]["error"]
                 print("%s %s: observed order %.3f, finest error %.4g" % (problem, config, order, finest))
