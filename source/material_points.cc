@@ -36,6 +36,11 @@ namespace mpm
                       "0.25",
                       Patterns::Anything(),
                       "Ball: radius, > 0.");
+    prm.declare_entry("inner radius",
+                      "0",
+                      Patterns::Anything(),
+                      "Ball: radius of a hole at the centre, in [0, radius): "
+                      "a ring in 2D, a spherical shell in 3D.");
     prm.declare_entry("particles per cell",
                       "2",
                       Patterns::Anything(),
@@ -96,6 +101,8 @@ namespace mpm
       {
         center = Parse::point<dim>(prm, name, "center");
         radius = Parse::bounded_double(prm, name, "radius", 0, 1e300, true);
+        inner_radius = Parse::bounded_double(
+          prm, name, "inner radius", 0, radius, false, true);
         for (unsigned int d = 0; d < dim; ++d)
           {
             lower_corner[d] = center[d] - radius;
@@ -168,7 +175,10 @@ namespace mpm
   BodyParameters<dim>::contains(const Point<dim> &x) const
   {
     if (shape == Shape::ball)
-      return x.distance_square(center) < radius * radius;
+      {
+        const double r2 = x.distance_square(center);
+        return r2 < radius * radius && r2 >= inner_radius * inner_radius;
+      }
     for (unsigned int d = 0; d < dim; ++d)
       if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
         return false;

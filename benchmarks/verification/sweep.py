@@ -63,6 +63,15 @@ def column(n):
             "Bodies/Body 0/upper corner=%.10g, 1" % (2 * h)]
 
 
+VORTEX = "mu=384.6153846153846, rho=1000"
+
+
+def vortex(amplitude):
+    def overrides(n):
+        return ["Grid/cells=%d" % n, "Simulation/constants=A=%g, %s" % (amplitude, VORTEX)]
+    return overrides
+
+
 def disks(n):
     return ["Grid/cells=%d" % n]
 
@@ -114,6 +123,14 @@ PROBLEMS = {
                            {"coarse": [10, 20], "full": [5, 10, 20, 40, 80]},
                            lambda n: 1.25 / n, "error at the end",
                            "column, RMS(sigma_yy - exact) / (rho g H) at rest"),
+    "vortex": ("vortex.prm", vortex(0.1),
+               {"coarse": [24, 48], "full": [24, 48, 96]},
+               lambda n: 3.0 / n, "error (max over time)",
+               "generalized vortex, A = 0.1: sqrt(sum V |u - u_exact|^2), max over time"),
+    "vortex_large": ("vortex.prm", vortex(1.0),
+                     {"coarse": [48], "full": [48, 96]},
+                     lambda n: 3.0 / n, "error (max over time)",
+                     "generalized vortex, A = 1 (shear strain up to 6)"),
     "two_disks": ("two_disks.prm", disks,
                   {"coarse": [10, 20], "full": [10, 20, 40, 80]},
                   lambda n: 1.0 / n, "max energy drift",
@@ -174,6 +191,8 @@ def run(exe, problem, config, n, work):
     row["error"] = float(m.group(1)) if m else float("nan")
     m = re.search(r"max-norm displacement error \(max over time\) = ([-+0-9.eE]+)", p.stdout)
     row["error_max_norm"] = float(m.group(1)) if m else ""
+    m = re.search(r"velocity error \(max over time\) = ([-+0-9.eE]+)", p.stdout)
+    row["velocity_error"] = float(m.group(1)) if m else ""
     m = re.search(r"dealii-mpm: (\d)D", p.stdout)
     row["dim"] = int(m.group(1)) if m else ""
     timing = {}
@@ -354,7 +373,7 @@ def main():
                     print("%-20s %-10s cells %4d: error %-12.4g %s" % (
                         problem, config, n, r["error"], r["status"]), flush=True)
     fields = ["problem", "dim", "basis", "transfer", "scheme", "cells", "h", "particles",
-              "steps", "error", "error_max_norm", "wall_seconds", "ns_per_particle_step",
+              "steps", "error", "error_max_norm", "velocity_error", "wall_seconds", "ns_per_particle_step",
               "status", "diagnosis"]
     if a.csv and not a.from_csv:
         with open(a.csv, "w", newline="") as f:

@@ -39,6 +39,7 @@ namespace mpm
     Point<dim>               lower_corner, upper_corner; ///< box
     Point<dim>               center;                     ///< ball
     double                   radius;                     ///< ball
+    double                   inner_radius = 0;           ///< ball: hole
     unsigned int             particles_per_cell;         ///< per direction
     double                   density;
     std::vector<std::string> initial_velocity; ///< one expression per component

@@ -4,6 +4,8 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <array>
+
 #include <mpm/material_points.h>
 #include <mpm/output.h>
 
@@ -69,8 +71,9 @@ namespace mpm
     double
     exact_solution_error(const double t) const;
     /// L2 (sqrt of sum V |u - u_exact|^2) and max norm of the displacement
-    /// error against the expression, over all points.
-    std::pair<double, double>
+    /// error against the expression, over all points, and the L2 norm of
+    /// the velocity error.
+    std::array<double, 3>
     displacement_error(const double t) const;
 
     const VerificationParameters prm;
@@ -80,6 +83,7 @@ namespace mpm
 
     std::unique_ptr<FunctionParser<dim>> exact_displacement;
     double                               max_error_max_norm = 0;
+    double                               max_velocity_error = 0;
     bool                                 have_initial_state = false;
     double                               initial_energy, initial_momentum_scale;
     Tensor<1, dim>                       initial_momentum;
