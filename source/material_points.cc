@@ -56,6 +56,15 @@ namespace mpm
                       "separated by ';' (or one for all), in the variables "
                       "x, y, z of the initial position; pi is known. "
                       "Example: '0.1*sin(pi*x/50)'.");
+    prm.declare_entry("initial displacement",
+                      "0",
+                      Patterns::Anything(),
+                      "Displacement u0(X) of the body at t = 0 from its shape "
+                      "(the reference configuration): one expression per "
+                      "component in x, y, z (or one for all). Points start at "
+                      "X + u0 with F = I + grad u0 and the stress of that F; "
+                      "needs a material whose stress follows from F "
+                      "(neo-Hookean).");
     prm.declare_entry("body force",
                       "0",
                       Patterns::Anything(),
@@ -118,12 +127,20 @@ namespace mpm
     density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
     initial_velocity =
       Parse::expression_list(prm, "initial velocity", dim, name);
+    initial_displacement =
+      Parse::expression_list(prm, "initial displacement", dim, name);
     const auto force = Parse::expression_list(prm, "body force", dim, name);
     if (!Parse::is_zero(force))
       body_force =
         Parse::vector_function<dim>(force, constants, name + "/body force");
     material_name = prm.get("material");
     material      = MaterialRegistry::create<dim>(material_name, prm, name);
+    if (is_displaced() && !material->needs_deformation_gradient())
+      throw InputError(name + "/initial displacement",
+                       prm.get("initial displacement"),
+                       "needs a material whose stress follows from F "
+                       "(neo-Hookean); '" +
+                         material_name + "' has no reference state");
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -167,6 +184,14 @@ namespace mpm
       ++n;
     });
     return n;
+  }
+
+
+  template <int dim>
+  bool
+  BodyParameters<dim>::is_displaced() const
+  {
+    return !Parse::is_zero(initial_displacement);
   }
 
 
@@ -248,6 +273,7 @@ namespace mpm
   {
     const FieldLayout                                 &l = fields;
     std::vector<Point<dim>>                            positions;
+    std::vector<Point<dim>> displaced_positions; // at t = 0
     std::vector<std::pair<unsigned int, unsigned int>> where; // (cell, body)
     std::vector<std::vector<double>>                   props;
     std::vector<Point<dim>>                            references;
@@ -269,6 +295,17 @@ namespace mpm
                                       body.name + "/initial velocity",
                                       1e-3 * grid.min_cell_size());
         velocity->set_formula(AutoDerivativeFunction<dim>::FourthOrder);
+        std::unique_ptr<FunctionParser<dim>> displacement;
+        if (body.is_displaced())
+          {
+            displacement = Parse::vector_function<dim>(
+              body.initial_displacement,
+              body.constants,
+              body.name + "/initial displacement",
+              1e-3 * grid.min_cell_size());
+            displacement->set_formula(
+              AutoDerivativeFunction<dim>::FourthOrder);
+          }
         const unsigned int n      = body.particles_per_cell;
         const unsigned int n_sub  = Utilities::fixed_power<dim>(n);
         const double       volume = cell_volume / n_sub;
@@ -299,7 +336,11 @@ namespace mpm
                 if (l.initial_position != FieldLayout::absent)
                   for (unsigned int d = 0; d < dim; ++d)
                     p[l.initial_position + d] = x[d];
+                Point<dim> start = x;
+                if (displacement)
+                  start = displace(*displacement, x, p.data());
                 positions.push_back(x);
+                displaced_positions.push_back(start);
                 references.push_back(xi);
                 where.emplace_back(grid.cartesian_index(cell), b);
                 props.push_back(std::move(p));
@@ -334,6 +375,54 @@ namespace mpm
                                 grid.cell(where[i].first),
                                 make_array_view(props[i]));
     particles.update_cached_numbers();
+
+    // Displaced bodies: the points were put in the cells of their reference
+    // positions; move them to where they start, then give them the stress
+    // of their initial F.
+    bool any_displaced = false;
+    for (const auto &body : body_list)
+      any_displaced = any_displaced || body.is_displaced();
+    if (any_displaced)
+      {
+        for (auto &p : particles)
+          p.set_location(displaced_positions[p.get_id() - first]);
+        relocate(OutOfGridPolicy::stop);
+        for (unsigned int b = 0; b < body_list.size(); ++b)
+          if (body_list[b].is_displaced())
+            body_list[b].material->update_stresses(particles, fields, b, 0.);
+      }
+  }
+
+
+  template <int dim>
+  Point<dim>
+  MaterialPoints<dim>::displace(const FunctionParser<dim> &displacement,
+                                const Point<dim>          &X,
+                                double                    *properties) const
+  {
+    const FieldLayout &l = fields;
+    Point<dim>         x = X;
+    Tensor<2, dim>     F;
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        x[c] += displacement.value(X, c);
+        F[c] = displacement.gradient(X, c);
+        F[c][c] += 1.;
+      }
+    const double J = determinant(F);
+    if (!(J > 0))
+      {
+        std::ostringstream where;
+        where << "det(I + grad u0) = " << J << " <= 0 at X = (" << X
+              << "): the initial displacement must not invert the body";
+        throw InputError(body_list[properties[l.body]].name +
+                           "/initial displacement",
+                         "",
+                         where.str());
+      }
+    Fields::store(F, properties + l.deformation_gradient);
+    properties[l.volume] *= J;
+    return x;
   }
 
 

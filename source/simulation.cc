@@ -82,6 +82,8 @@ namespace mpm
       fields.initial_position = fields.initial_position || body.body_force;
     fields.deformation_gradient =
       integrator_parameters.basis == BasisType::cpgimp;
+    for (const auto &body : body_parameters)
+      fields.initial_position = fields.initial_position || body.is_displaced();
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
     points                 = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,

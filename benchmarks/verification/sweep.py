@@ -35,9 +35,14 @@ def mms_1d(amplitude, ppc=2):
 NEO = "c=100, rho=1, mu=3846.153846153846, lambda=5769.230769230769"
 
 
-def mms_axis(amplitude):
+IN_PHASE = "px=0, py=0, pz=0"
+PHASED = "px=0, py=%.17g, pz=%.17g" % (2 * math.pi / 3, 4 * math.pi / 3)
+
+
+def mms_axis(amplitude, phases=IN_PHASE):
     def overrides(n):
-        return ["Grid/cells=%d" % n, "Simulation/constants=A=%g, %s" % (amplitude, NEO)]
+        return ["Grid/cells=%d" % n,
+                "Simulation/constants=A=%g, %s, %s" % (amplitude, NEO, phases)]
     return overrides
 
 
@@ -103,6 +108,14 @@ PROBLEMS = {
                {"coarse": [8, 16], "full": [8, 16, 32, 64]},
                lambda n: 1.0 / n, "error (max over time)",
                "2D axis-aligned MMS, A = 0.05 (in phase, cell crossing)"),
+    "mms_2d_phased": ("mms_2d.prm", mms_axis(0.05, PHASED),
+                      {"coarse": [8, 16], "full": [8, 16, 32, 64]},
+                      lambda n: 1.0 / n, "error (max over time)",
+                      "2D axis-aligned MMS, A = 0.05, V shifted by 2 pi/3 (starts displaced)"),
+    "mms_2d_phased_small": ("mms_2d.prm", mms_axis(1e-4, PHASED),
+                            {"coarse": [8, 16], "full": [8, 16, 32, 64]},
+                            lambda n: 1.0 / n, "error (max over time)",
+                            "2D axis-aligned MMS, A = 1e-4, V shifted by 2 pi/3"),
     "mms_3d_small": ("mms_3d.prm", mms_axis(1e-4),
                      {"coarse": [4, 8], "full": [4, 8, 16]},
                      lambda n: 1.0 / n, "error (max over time)",
@@ -111,6 +124,10 @@ PROBLEMS = {
                {"coarse": [4, 8], "full": [4, 8, 16]},
                lambda n: 1.0 / n, "error (max over time)",
                "3D axis-aligned MMS, A = 0.05 (in phase, cell crossing)"),
+    "mms_3d_phased": ("mms_3d.prm", mms_axis(0.05, PHASED),
+                      {"coarse": [4, 8], "full": [4, 8, 16]},
+                      lambda n: 1.0 / n, "error (max over time)",
+                      "3D axis-aligned MMS, A = 0.05, V and W shifted by 2 pi/3 and 4 pi/3"),
     "vibrating_bar_position": ("vibrating_bar.prm", bar_position,
                                {"coarse": [27, 54], "full": [27, 54, 108, 216]},
                                lambda n: 27.0 / n, "error (max over time)",
@@ -346,7 +363,8 @@ def main():
     ap.add_argument("--plots", action="store_true", help="PNGs and doc/verification.md")
     ap.add_argument("--check", action="store_true", help="assert the bounds below")
     ap.add_argument("--from-csv", default=None,
-                    help="redraw plots and report from an earlier --csv file")
+                    help="redraw plots and report from earlier --csv files "
+                    "(comma-separated; their rows are merged)")
     ap.add_argument("--min-order", type=float, default=None)
     ap.add_argument("--max-error", type=float, default=None)
     ap.add_argument("--expect-growth", action="store_true",
@@ -354,14 +372,25 @@ def main():
     a = ap.parse_args()
     rows = []
     if a.from_csv:
-        with open(a.from_csv) as f:
-            for r in csv.DictReader(f):
-                for k in ("h", "error", "wall_seconds"):
-                    r[k] = float(r[k]) if r[k] not in ("", None) else float("nan")
-                r["cells"] = int(r["cells"])
-                r["ns_per_particle_step"] = float(r["ns_per_particle_step"]) if r["ns_per_particle_step"] else ""
-                rows.append(r)
+        for path in a.from_csv.split(","):
+            with open(path) as f:
+                for r in csv.DictReader(f):
+                    for k in ("h", "error", "wall_seconds"):
+                        r[k] = float(r[k]) if r[k] not in ("", None) else float("nan")
+                    r["cells"] = int(r["cells"])
+                    r["ns_per_particle_step"] = (float(r["ns_per_particle_step"])
+                                                 if r["ns_per_particle_step"] else "")
+                    rows.append(r)
         a.problems = ",".join(sorted(set(r["problem"] for r in rows), key=list(PROBLEMS).index))
+    fields = ["problem", "dim", "basis", "transfer", "scheme", "cells", "h", "particles",
+              "steps", "error", "error_max_norm", "velocity_error", "wall_seconds",
+              "ns_per_particle_step", "status", "diagnosis"]
+    # Rows are written as they come, so that an interrupted sweep keeps them.
+    out = None
+    if a.csv and not a.from_csv:
+        out = open(a.csv, "w", newline="")
+        writer = csv.DictWriter(out, fieldnames=fields, extrasaction="ignore")
+        writer.writeheader()
     with tempfile.TemporaryDirectory() as work:
         for problem in a.problems.split(","):
             for config in a.configs.split(","):
@@ -370,16 +399,13 @@ def main():
                 for n in ([] if a.from_csv else ladder):
                     r = run(a.exe, problem, config, n, work)
                     rows.append(r)
+                    if out:
+                        writer.writerow(r)
+                        out.flush()
                     print("%-20s %-10s cells %4d: error %-12.4g %s" % (
                         problem, config, n, r["error"], r["status"]), flush=True)
-    fields = ["problem", "dim", "basis", "transfer", "scheme", "cells", "h", "particles",
-              "steps", "error", "error_max_norm", "velocity_error", "wall_seconds", "ns_per_particle_step",
-              "status", "diagnosis"]
-    if a.csv and not a.from_csv:
-        with open(a.csv, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
-            w.writeheader()
-            w.writerows(rows)
+    if out:
+        out.close()
     if a.plots:
         doc = os.path.join(ROOT, "doc")
         report(rows, plots(rows, doc), os.path.join(doc, "verification.md"))

@@ -43,6 +43,8 @@ namespace mpm
     unsigned int             particles_per_cell;         ///< per direction
     double                   density;
     std::vector<std::string> initial_velocity; ///< one expression per component
+    /// Displacement at t = 0 from the reference shape; "0" if none.
+    std::vector<std::string> initial_displacement;
     /// Body force per unit mass, b(X, t): expressions in the initial
     /// position X = (x, y, z) and time t; null if zero.
     std::shared_ptr<FunctionParser<dim>> body_force;
@@ -53,6 +55,10 @@ namespace mpm
 
     bool
     contains(const Point<dim> &x) const;
+
+    /// Does the body start displaced from its shape?
+    bool
+    is_displaced() const;
 
     /// Call visit(x, xi) for each point this body seeds in the cell with
     /// lower corner @p cell_origin and size @p h (x real, xi reference).
@@ -144,6 +150,12 @@ namespace mpm
   private:
     FieldLayout
     assemble_layout(const FieldRequests &requests) const;
+    /// Apply the initial displacement to the point with reference position
+    /// @p X and properties @p properties (F, volume); return where it starts.
+    Point<dim>
+    displace(const FunctionParser<dim> &displacement,
+             const Point<dim>          &X,
+             double                    *properties) const;
     std::string
     describe_leaving_point(
       const typename Particles::ParticleHandler<dim>::particle_iterator &p)
