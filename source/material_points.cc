@@ -271,9 +271,9 @@ namespace mpm
   void
   MaterialPoints<dim>::generate()
   {
-    const FieldLayout                                 &l = fields;
-    std::vector<Point<dim>>                            positions;
-    std::vector<Point<dim>> displaced_positions; // at t = 0
+    const FieldLayout      &l = fields;
+    std::vector<Point<dim>> positions;
+    std::vector<Point<dim>> displaced_positions;              // at t = 0
     std::vector<std::pair<unsigned int, unsigned int>> where; // (cell, body)
     std::vector<std::vector<double>>                   props;
     std::vector<Point<dim>>                            references;
@@ -298,13 +298,12 @@ namespace mpm
         std::unique_ptr<FunctionParser<dim>> displacement;
         if (body.is_displaced())
           {
-            displacement = Parse::vector_function<dim>(
-              body.initial_displacement,
-              body.constants,
-              body.name + "/initial displacement",
-              1e-3 * grid.min_cell_size());
-            displacement->set_formula(
-              AutoDerivativeFunction<dim>::FourthOrder);
+            displacement =
+              Parse::vector_function<dim>(body.initial_displacement,
+                                          body.constants,
+                                          body.name + "/initial displacement",
+                                          1e-3 * grid.min_cell_size());
+            displacement->set_formula(AutoDerivativeFunction<dim>::FourthOrder);
           }
         const unsigned int n      = body.particles_per_cell;
         const unsigned int n_sub  = Utilities::fixed_power<dim>(n);

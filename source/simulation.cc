@@ -173,10 +173,27 @@ namespace mpm
           << body_parameters.size() << " bod"
           << (body_parameters.size() == 1 ? "y" : "ies") << ", "
           << Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n"
+          << "  " << scheme_description() << "\n"
           << "  fields per point (" << l.n_properties << " doubles):";
     for (const auto &[name, n] : l.description)
       pcout << " " << name << "[" << n << "]";
     pcout << std::endl;
+  }
+
+
+  template <int dim>
+  std::string
+  Simulation<dim>::scheme_description() const
+  {
+    std::ostringstream s;
+    const auto        &p = integrator_parameters;
+    s << "scheme " << p.scheme_name << ", basis " << p.basis_name
+      << ", transfer ";
+    if (p.transfer == Transfer::apic)
+      s << "APIC";
+    else
+      s << "PIC/FLIP with FLIP fraction " << p.flip_fraction;
+    return s.str();
   }
 
 

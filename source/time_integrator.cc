@@ -98,16 +98,16 @@ namespace mpm
     end_time        = Parse::bounded_double(prm, s, "end time", 0, 1e300, true);
     cfl_number      = Parse::bounded_double(prm, s, "CFL number", 0, 1, true);
     fixed_time_step = Parse::bounded_double(prm, s, "time step", 0, 1e300);
-    const std::string scheme_name = prm.get("update scheme");
-    scheme                        = scheme_name == "USL"   ? UpdateScheme::USL
-                                    : scheme_name == "USF" ? UpdateScheme::USF
-                                                           : UpdateScheme::MUSL;
-    const std::string basis_name  = prm.get("basis");
-    basis                         = basis_name == "linear" ? BasisType::linear
-                                    : basis_name == "uGIMP" ? BasisType::uniform_gimp
-                                    : basis_name == "cpGIMP" ? BasisType::cpgimp
-                                    : basis_name == "quadratic B-spline" ? BasisType::quadratic_bspline
-                                                                         : BasisType::cubic_bspline;
+    scheme_name     = prm.get("update scheme");
+    scheme          = scheme_name == "USL"   ? UpdateScheme::USL
+                      : scheme_name == "USF" ? UpdateScheme::USF
+                                             : UpdateScheme::MUSL;
+    basis_name      = prm.get("basis");
+    basis           = basis_name == "linear"   ? BasisType::linear
+                      : basis_name == "uGIMP"  ? BasisType::uniform_gimp
+                      : basis_name == "cpGIMP" ? BasisType::cpgimp
+                      : basis_name == "quadratic B-spline" ? BasisType::quadratic_bspline
+                                                           : BasisType::cubic_bspline;
     transfer = prm.get("transfer") == "APIC" ? Transfer::apic : Transfer::flip;
     flip_fraction = Parse::bounded_double(prm, s, "FLIP fraction", 0, 1);
     gravity       = Parse::vector<dim>(prm, s, "gravity");

@@ -40,6 +40,9 @@ namespace mpm
     write_output(const double wall_seconds);
     void
     print_progress(const double wall_seconds) const;
+    /// "scheme USL, basis linear, transfer ..." for the start-up summary.
+    std::string
+    scheme_description() const;
     void
     print_performance(const double wall_seconds,
                       const double step_seconds) const;

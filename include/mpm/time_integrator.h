@@ -42,6 +42,7 @@ namespace mpm
     double          fixed_time_step; ///< 0: from the CFL condition
     UpdateScheme    scheme;
     BasisType       basis;
+    std::string     scheme_name, basis_name; ///< as given, for messages
     Transfer        transfer;
     double          flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
     Tensor<1, dim>  gravity;
