@@ -162,7 +162,14 @@ namespace mpm
               {
                 basis.node_pattern(cell_coordinates, s, list);
                 for (auto &node : list)
-                  node = grid.local_node(node);
+                  {
+                    node = grid.local_node(node);
+                    // Every stencil node must be owned or a ghost here (see
+                    // BackgroundGrid::local_node); Debug builds check it.
+                    Assert(node != BackgroundGrid<dim>::invalid,
+                           ExcMessage("a stencil node is not known on this "
+                                      "rank"));
+                  }
                 known_patterns |= 1u << s.pattern;
               }
             s.nodes = list.data();
