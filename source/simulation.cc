@@ -79,11 +79,10 @@ namespace mpm
       output_parameters.writes("displacement") ||
       Verification<dim>::needs_initial_position(verification_parameters);
     for (const auto &body : body_parameters)
-      fields.initial_position = fields.initial_position || body.body_force;
+      fields.initial_position =
+        fields.initial_position || body.body_force || body.is_displaced();
     fields.deformation_gradient =
       integrator_parameters.basis == BasisType::cpgimp;
-    for (const auto &body : body_parameters)
-      fields.initial_position = fields.initial_position || body.is_displaced();
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
     points                 = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,

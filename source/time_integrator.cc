@@ -230,10 +230,9 @@ namespace mpm
         wave_modulus_of_body.push_back(body.material->p_wave_modulus());
         body_forces.push_back(body.body_force.get());
         has_body_forces = has_body_forces || body.body_force;
+        initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
     min_nodal_mass = prm.small_mass_fraction * points.min_particle_mass();
-    for (const auto &body : points.bodies())
-      initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
     Assert(prm.basis != BasisType::cpgimp ||
              points.layout().deformation_gradient != FieldLayout::absent,
            ExcMessage("cpGIMP needs the deformation gradient"));
@@ -290,10 +289,7 @@ namespace mpm
       }
     dt = std::min(dt, max_dt);
 
-    with_basis<dim>(prm.basis, [&](auto *tag) {
-      using Basis = std::remove_pointer_t<decltype(tag)>;
-      advance(Basis(grid.parameters().n_cells, grid.cell_size()), dt);
-    });
+    with_scene_basis([&](const auto &basis) { advance(basis, dt); });
     raise_if_any_failed(failure, comm);
 
     {
@@ -303,6 +299,18 @@ namespace mpm
     t += dt;
     last_dt = dt;
     ++n_steps;
+  }
+
+
+  template <int dim>
+  template <typename F>
+  inline void
+  TimeIntegrator<dim>::with_scene_basis(const F &f) const
+  {
+    with_basis<dim>(prm.basis, [&](auto *tag) {
+      using Basis = std::remove_pointer_t<decltype(tag)>;
+      f(Basis(grid.parameters().n_cells, grid.cell_size()));
+    });
   }
 
 
@@ -347,9 +355,7 @@ namespace mpm
   void
   TimeIntegrator<dim>::transfer_round_trip()
   {
-    with_basis<dim>(prm.basis, [&](auto *tag) {
-      using Basis = std::remove_pointer_t<decltype(tag)>;
-      const Basis basis(grid.parameters().n_cells, grid.cell_size());
+    with_scene_basis([&](const auto &basis) {
       scatter_to_grid(basis, true, false);
       grid_velocities_from_momentum(v_old);
       // No force, no step: the new grid velocity is the old one.
@@ -586,10 +592,11 @@ namespace mpm
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           {
             const double        *node = u + n_velocities * s.nodes[v];
-            const Tensor<1, dim> a    = Fields::vector<dim>(node + v_old);
             const Tensor<1, dim> b    = Fields::vector<dim>(node + v_new);
             v_grid += s.weights[v] * b;
-            dv_grid += s.weights[v] * (b - a);
+            // FLIP's velocity increment; APIC does not use it.
+            if constexpr (!decltype(apic)::value)
+              dv_grid += s.weights[v] * (b - Fields::vector<dim>(node + v_old));
           }
         if constexpr (decltype(apic)::value)
           {

@@ -204,9 +204,9 @@ namespace mpm
   {
     const FieldLayout &l = points.layout();
     // The exact velocity is du/dt by a central difference in time: the
-    // scene states the displacement once. With a step of 1e-6 the
-    // difference is exact to about 1e-10 relative, far below any
-    // discretisation error measured here.
+    // scene states the displacement once. With a step of 1e-6 s the
+    // relative error is about (omega dt)^2 / 6, 2e-8 for the fastest scene
+    // here (omega = 100 pi), far below any discretisation error measured.
     const double dt  = 1e-6;
     auto         u_x = [&](const Point<dim> &X, const double time) {
       exact_displacement->set_time(time);

@@ -145,6 +145,11 @@ namespace mpm
     static constexpr unsigned int node_mass = 0, v_old = 1, v_new = 1 + dim;
     static constexpr unsigned int n_velocities = 1 + 2 * dim;
 
+    /// Call @p f with the scene's basis on this grid (the basis class is
+    /// chosen at run time, once, and everything in @p f is compiled for it).
+    template <typename F>
+    void
+    with_scene_basis(const F &f) const;
     /// The step with basis @p basis, in the order of the update scheme.
     template <typename Basis>
     void
