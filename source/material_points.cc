@@ -65,6 +65,17 @@ namespace mpm
                       "X + u0 with F = I + grad u0 and the stress of that F; "
                       "needs a material whose stress follows from F "
                       "(neo-Hookean).");
+    prm.declare_entry(
+      "initial stress",
+      "0",
+      Patterns::Anything(),
+      "Cauchy stress at t = 0 in Pa, tension positive: expressions in x, y, "
+      "z separated by ';' for the components xx; yy; zz (1D), xx; yy; zz; xy "
+      "(2D, plane strain: zz is the out-of-plane stress) or xx; yy; zz; xy; "
+      "yz; xz (3D); e.g. a geostatic state 'K0*rho*g*(y-H); rho*g*(y-H); "
+      "K0*rho*g*(y-H); 0' with constants. The material starts with the "
+      "state that carries it (elastic strain); a plastic material must "
+      "hold it inside its yield surface.");
     prm.declare_entry("body force",
                       "0",
                       Patterns::Anything(),
@@ -129,18 +140,32 @@ namespace mpm
       Parse::expression_list(prm, "initial velocity", dim, name);
     initial_displacement =
       Parse::expression_list(prm, "initial displacement", dim, name);
+    initial_stress   = Parse::expression_list(prm,
+                                            "initial stress",
+                                            dim == 1   ? 3
+                                              : dim == 2 ? 4
+                                                         : 6,
+                                            name);
     const auto force = Parse::expression_list(prm, "body force", dim, name);
     if (!Parse::is_zero(force))
       body_force =
         Parse::vector_function<dim>(force, constants, name + "/body force");
     material_name = prm.get("material");
-    material      = MaterialRegistry::create<dim>(material_name, prm, name);
+    material = MaterialRegistry::create<dim>(material_name, prm, name, density);
     if (is_displaced() && !material->needs_deformation_gradient())
       throw InputError(name + "/initial displacement",
                        prm.get("initial displacement"),
                        "needs a material whose stress follows from F "
                        "(neo-Hookean); '" +
                          material_name + "' has no reference state");
+    if (is_prestressed() && !material->accepts_initial_stress())
+      throw InputError(name + "/initial stress",
+                       prm.get("initial stress"),
+                       "'" + material_name +
+                         "' takes its stress from F alone and cannot start "
+                         "stressed; use a model with an elastic state "
+                         "(linear elastic, Hencky elastic, the plastic "
+                         "models)");
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -197,6 +222,14 @@ namespace mpm
 
   template <int dim>
   bool
+  BodyParameters<dim>::is_prestressed() const
+  {
+    return !Parse::is_zero(initial_stress);
+  }
+
+
+  template <int dim>
+  bool
   BodyParameters<dim>::contains(const Point<dim> &x) const
   {
     if (shape == Shape::ball)
@@ -241,29 +274,11 @@ namespace mpm
 
   template <int dim>
   FieldLayout
-  MaterialPoints<dim>::assemble_layout(const FieldRequests &requests) const
+  MaterialPoints<dim>::assemble_layout(FieldRequests requests) const
   {
-    FieldLayout l;
-    auto        add = [&l](const std::string &name, const unsigned int n) {
-      l.description.emplace_back(name, n);
-      return l.add(n);
-    };
-    l.mass     = add("mass", 1);
-    l.volume   = add("volume", 1);
-    l.body     = add("body", 1);
-    l.velocity = add("velocity", dim);
-    l.stress = add("stress", SymmetricTensor<2, dim>::n_independent_components);
-    l.velocity_gradient = add("velocity gradient", dim * dim);
-    bool need_F         = requests.deformation_gradient;
     for (const auto &b : body_list)
-      need_F = need_F || b.material->needs_deformation_gradient();
-    if (need_F)
-      l.deformation_gradient = add("deformation gradient", dim * dim);
-    if (requests.initial_position)
-      l.initial_position = add("initial position", dim);
-    if (requests.affine_velocity)
-      l.affine_velocity = add("affine velocity", dim * dim);
-    return l;
+      b.material->request_fields(requests);
+    return mpm::assemble_layout<dim>(requests);
   }
 
 
@@ -305,6 +320,11 @@ namespace mpm
                                           1e-3 * grid.min_cell_size());
             displacement->set_formula(AutoDerivativeFunction<dim>::FourthOrder);
           }
+        std::unique_ptr<FunctionParser<dim>> stress;
+        if (body.is_prestressed())
+          stress = Parse::vector_function<dim>(body.initial_stress,
+                                               body.constants,
+                                               body.name + "/initial stress");
         const unsigned int n      = body.particles_per_cell;
         const unsigned int n_sub  = Utilities::fixed_power<dim>(n);
         const double       volume = cell_volume / n_sub;
@@ -335,6 +355,7 @@ namespace mpm
                 if (l.initial_position != FieldLayout::absent)
                   for (unsigned int d = 0; d < dim; ++d)
                     p[l.initial_position + d] = x[d];
+                initialise_state(body, stress.get(), x, p.data());
                 Point<dim> start = x;
                 if (displacement)
                   start = displace(*displacement, x, p.data());
@@ -347,6 +368,7 @@ namespace mpm
               });
       }
     minimum_mass = Utilities::MPI::min(minimum_mass, comm);
+    raise_if_any_failed(state_failure, comm, true);
 
     for (unsigned int b = 0; b < body_list.size(); ++b)
       if (Utilities::MPI::sum(count[b], comm) == 0)
@@ -389,6 +411,41 @@ namespace mpm
         for (unsigned int b = 0; b < body_list.size(); ++b)
           if (body_list[b].is_displaced())
             body_list[b].material->update_stresses(particles, fields, b, 0.);
+      }
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::initialise_state(const BodyParameters<dim> &body,
+                                        FunctionParser<dim>       *stress,
+                                        const Point<dim>          &x,
+                                        double                    *properties)
+  {
+    // Components in the order of 'initial stress'.
+    static constexpr unsigned int rows[6] = {0, 1, 2, 0, 1, 0};
+    static constexpr unsigned int cols[6] = {0, 1, 2, 1, 2, 2};
+    SymmetricTensor<2, 3>         sigma0;
+    if (stress != nullptr)
+      for (unsigned int c = 0; c < stress->n_components; ++c)
+        sigma0[rows[c]][cols[c]] = stress->value(x, c);
+    try
+      {
+        body.material->initialise_point(properties, fields, sigma0);
+      }
+    catch (const std::domain_error &e)
+      {
+        std::ostringstream where;
+        where << "the stress (" << sigma0 << ") at (" << x << ") " << e.what()
+              << " of '" << body.material_name << "'";
+        std::string text;
+        for (const auto &e : body.initial_stress)
+          text += (text.empty() ? "" : "; ") + e;
+        // Raised collectively after generation (one rank alone must not
+        // stop).
+        if (state_failure.empty())
+          state_failure =
+            InputError(body.name + "/initial stress", text, where.str()).what();
       }
   }
 

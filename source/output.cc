@@ -29,11 +29,15 @@ namespace mpm
     prm.declare_entry(
       "fields",
       "velocity, displacement, stress, J, mass, volume, body",
-      Patterns::MultipleSelection(
-        "velocity|displacement|stress|J|mass|volume|body"),
+      Patterns::MultipleSelection("velocity|displacement|stress|J|mass|volume|"
+                                  "body|plastic strain|pressure|von Mises "
+                                  "stress"),
       "Particle fields written to VTU, any of: velocity, "
-      "displacement, stress, J, mass, volume, body. 'displacement' makes "
-      "every point store its initial position.");
+      "displacement, stress, J, mass, volume, body, plastic strain "
+      "(equivalent, 0 for elastic bodies), pressure (-tr(sigma)/3, with the "
+      "out-of-plane stress in 2D), von Mises stress (sqrt(3/2 s:s), "
+      "likewise). 'displacement' makes every point store its initial "
+      "position; the last two are computed at output only.");
     prm.declare_entry(
       "grid output",
       "false",
@@ -301,6 +305,9 @@ namespace mpm
     const bool           mass         = prm.writes("mass");
     const bool           volume       = prm.writes("volume");
     const bool           body         = prm.writes("body");
+    const bool           plastic      = prm.writes("plastic strain");
+    const bool           pressure     = prm.writes("pressure");
+    const bool           von_mises    = prm.writes("von Mises stress");
     if (velocity)
       out.add_field("velocity", dim, vector);
     if (displacement)
@@ -315,6 +322,12 @@ namespace mpm
       out.add_field("volume", 1, scalar);
     if (body)
       out.add_field("body", 1, scalar);
+    if (plastic)
+      out.add_field("plastic_strain", 1, scalar);
+    if (pressure)
+      out.add_field("pressure", 1, scalar);
+    if (von_mises)
+      out.add_field("von_Mises_stress", 1, scalar);
 
     out.patches.reserve(points.handler().n_locally_owned_particles());
     for (const auto &p : points.handler())
@@ -347,6 +360,21 @@ namespace mpm
           put(q[l.volume]);
         if (body)
           put(q[l.body]);
+        if (plastic)
+          put(l.plastic_strain == FieldLayout::absent ? 0.
+                                                      : q[l.plastic_strain]);
+        if (pressure || von_mises)
+          {
+            const SymmetricTensor<2, 3> sigma =
+              points.bodies()[q[l.body]].material->cauchy_stress_3d(q, l);
+            if (pressure)
+              put(-trace(sigma) / 3.);
+            if (von_mises)
+              {
+                const SymmetricTensor<2, 3> s = deviator(sigma);
+                put(std::sqrt(1.5 * (s * s)));
+              }
+          }
         out.patches.push_back(std::move(patch));
       }
 

@@ -18,14 +18,27 @@ namespace mpm
   }
 
 
-  void
-  raise_if_any_failed(const std::string &local_diagnosis, MPI_Comm comm)
+  InputError::InputError(const std::string &message)
+    : std::runtime_error(message)
   {
+  }
+
+
+  void
+  raise_if_any_failed(const std::string &local_diagnosis,
+                      MPI_Comm           comm,
+                      const bool         input_error)
+  {
+    auto raise = [input_error](const std::string &message) {
+      if (input_error)
+        throw InputError(message);
+      throw RunError(message);
+    };
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     if (n_ranks == 1)
       {
         if (!local_diagnosis.empty())
-          throw RunError(local_diagnosis);
+          raise(local_diagnosis);
         return;
       }
     const unsigned int first =
@@ -35,7 +48,7 @@ namespace mpm
                           comm);
     if (first == n_ranks)
       return;
-    throw RunError(Utilities::MPI::broadcast(comm, local_diagnosis, first));
+    raise(Utilities::MPI::broadcast(comm, local_diagnosis, first));
   }
 
 
@@ -234,7 +247,9 @@ namespace mpm
                     const std::string                   &parameter,
                     const double                         difference_step)
     {
-      auto f = std::make_unique<FunctionParser<dim>>(dim, 0., difference_step);
+      auto        f = std::make_unique<FunctionParser<dim>>(expressions.size(),
+                                                     0.,
+                                                     difference_step);
       std::string text;
       for (const auto &e : expressions)
         text += (text.empty() ? "" : "; ") + e;
@@ -250,7 +265,7 @@ namespace mpm
                         constants,
                         true);
           // muparser reports unknown names only on first evaluation.
-          Vector<double> value(dim);
+          Vector<double> value(expressions.size());
           f->vector_value(Point<dim>(), value);
         }
       catch (...)

@@ -15,7 +15,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
-#include <mpm/material.h>
+#include <mpm/materials/material.h>
 
 #include <cmath>
 #include <iostream>
@@ -79,7 +79,7 @@ namespace
     prm.set("Young's modulus", "1000");
     prm.set("Poisson's ratio", "0.3");
     prm.leave_subsection();
-    return MaterialRegistry::create<2>(name, prm, "test");
+    return MaterialRegistry::create<2>(name, prm, "test", 1.);
   }
 } // namespace
 

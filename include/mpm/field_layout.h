@@ -17,8 +17,9 @@ namespace mpm
    * what the scene uses, so that a scene carries no field it does not need:
    * the deformation gradient only if a material asks for it, the initial
    * position only if displacement is written or checked (or a body force
-   * needs it), the affine velocity only with APIC. (Material state
-   * variables will be added here when the first model that has some lands.)
+   * needs it), the affine velocity only with APIC, the elastic left
+   * Cauchy-Green tensor and the plastic strain only for the models that
+   * keep them.
    */
   struct FieldLayout
   {
@@ -33,7 +34,11 @@ namespace mpm
     unsigned int deformation_gradient = absent; ///< dim*dim, optional
     unsigned int initial_position     = absent; ///< dim, optional
     unsigned int affine_velocity      = absent; ///< dim*dim, APIC's C_p
-    unsigned int n_properties         = 0;
+    /// Elastic left Cauchy-Green tensor b_e of the log-strain models, in
+    /// the embedded form of Fields::embedded (3, 4 or 6 values).
+    unsigned int elastic_left_cauchy_green = absent;
+    unsigned int plastic_strain = absent; ///< 1, equivalent plastic strain
+    unsigned int n_properties   = 0;
 
     /// Reserve @p n consecutive slots and return the first.
     unsigned int
@@ -52,10 +57,19 @@ namespace mpm
   /// Fields that a scene needs beyond the ones every scene stores.
   struct FieldRequests
   {
-    bool initial_position     = false;
-    bool deformation_gradient = false; ///< also if no material needs it
-    bool affine_velocity      = false;
+    bool initial_position          = false;
+    bool deformation_gradient      = false;
+    bool affine_velocity           = false;
+    bool elastic_left_cauchy_green = false;
+    bool plastic_strain            = false;
   };
+
+
+  /// The layout of a scene that stores what @p requests asks for, besides
+  /// the fields every scene stores; @p dim sets the tensor sizes.
+  template <int dim>
+  FieldLayout
+  assemble_layout(const FieldRequests &requests);
 
 
   /// Reading and writing tensors from a flat property array.
@@ -116,6 +130,56 @@ namespace mpm
     {
       for (unsigned int k = 0; k < s.n_independent_components; ++k)
         p[k] = s.access_raw_entry(k);
+    }
+
+    /**
+     * A 3D symmetric tensor of a point in uniaxial (1D) or plane (2D)
+     * strain: its in-plane components in deal.II's order, then the
+     * out-of-plane normal ones (the shear components across the plane
+     * vanish there). 3, 4 or 6 values.
+     */
+    template <int dim>
+    constexpr unsigned int n_embedded = dim *(dim + 1) / 2 + 3 - dim;
+
+    template <int dim>
+    inline SymmetricTensor<2, 3>
+    embedded(const double *p)
+    {
+      SymmetricTensor<2, 3> t;
+      const auto            in_plane = symmetric<dim>(p);
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          t[i][j] = in_plane[i][j];
+      for (unsigned int d = dim; d < 3; ++d)
+        t[d][d] =
+          p[SymmetricTensor<2, dim>::n_independent_components + d - dim];
+      return t;
+    }
+
+    template <int dim>
+    inline void
+    store_embedded(const SymmetricTensor<2, 3> &t, double *p)
+    {
+      SymmetricTensor<2, dim> in_plane;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          in_plane[i][j] = t[i][j];
+      store(in_plane, p);
+      for (unsigned int d = dim; d < 3; ++d)
+        p[SymmetricTensor<2, dim>::n_independent_components + d - dim] =
+          t[d][d];
+    }
+
+    /// The in-plane part of a 3D tensor.
+    template <int dim>
+    inline SymmetricTensor<2, dim>
+    in_plane(const SymmetricTensor<2, 3> &t)
+    {
+      SymmetricTensor<2, dim> s;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          s[i][j] = t[i][j];
+      return s;
     }
   } // namespace Fields
 } // namespace mpm

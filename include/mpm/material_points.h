@@ -8,7 +8,7 @@
 
 #include <mpm/background_grid.h>
 #include <mpm/field_layout.h>
-#include <mpm/material.h>
+#include <mpm/materials/material.h>
 
 #include <map>
 #include <memory>
@@ -45,6 +45,9 @@ namespace mpm
     std::vector<std::string> initial_velocity; ///< one expression per component
     /// Displacement at t = 0 from the reference shape; "0" if none.
     std::vector<std::string> initial_displacement;
+    /// Stress at t = 0, Cauchy, tension positive: expressions in x, y, z
+    /// for xx; yy; zz; xy (2D), and yz; xz (3D); "0" if none.
+    std::vector<std::string> initial_stress;
     /// Body force per unit mass, b(X, t): expressions in the initial
     /// position X = (x, y, z) and time t; null if zero.
     std::shared_ptr<FunctionParser<dim>> body_force;
@@ -59,6 +62,10 @@ namespace mpm
     /// Does the body start displaced from its shape?
     bool
     is_displaced() const;
+
+    /// Does the body start with a stress?
+    bool
+    is_prestressed() const;
 
     /// Call visit(x, xi) for each point this body seeds in the cell with
     /// lower corner @p cell_origin and size @p h (x real, xi reference).
@@ -148,8 +155,17 @@ namespace mpm
     }
 
   private:
+    /// The scene's requests plus what the bodies' materials store.
     FieldLayout
-    assemble_layout(const FieldRequests &requests) const;
+    assemble_layout(FieldRequests requests) const;
+    /// Give a new point at @p x of @p body its material's initial state,
+    /// with the initial stress @p stress (null: none).
+    /// A failure is noted in state_failure (raised collectively).
+    void
+    initialise_state(const BodyParameters<dim> &body,
+                     FunctionParser<dim>       *stress,
+                     const Point<dim>          &x,
+                     double                    *properties);
     /// Apply the initial displacement to the point with reference position
     /// @p X and properties @p properties (F, volume); return where it starts.
     Point<dim>
@@ -168,6 +184,7 @@ namespace mpm
     Particles::ParticleHandler<dim>        particles;
     double                                 minimum_mass;
     unsigned int                           n_full_sorts = 0;
+    std::string                            state_failure;
   };
 } // namespace mpm
 

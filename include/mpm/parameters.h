@@ -29,6 +29,8 @@ namespace mpm
     InputError(const std::string &parameter,
                const std::string &value,
                const std::string &allowed);
+    /// From a message already in that form (passed between ranks).
+    explicit InputError(const std::string &message);
   };
 
   /**
@@ -44,11 +46,14 @@ namespace mpm
   /**
    * Collective failure: every rank calls this at the same point; if any
    * rank has a non-empty @p local_diagnosis, all ranks throw RunError with
-   * the diagnosis of the lowest such rank. A throw on one rank alone would
-   * leave the others waiting in the next collective call.
+   * the diagnosis of the lowest such rank (InputError if @p input_error).
+   * A throw on one rank alone would leave the others waiting in the next
+   * collective call.
    */
   void
-  raise_if_any_failed(const std::string &local_diagnosis, MPI_Comm comm);
+  raise_if_any_failed(const std::string &local_diagnosis,
+                      MPI_Comm           comm,
+                      const bool         input_error = false);
 
   /**
    * Helpers that read an entry of the current subsection of @p prm and
@@ -105,7 +110,8 @@ namespace mpm
     std::map<std::string, double>
     constants(ParameterHandler &prm);
 
-    /// A vector function of x, y, z and t from @p expressions; an
+    /// A vector function of x, y, z and t from @p expressions (one component
+    /// each); an
     /// expression that does not parse is an InputError naming @p parameter.
     /// @p difference_step is the step of its finite-difference gradient.
     template <int dim>

@@ -1,0 +1,126 @@
+#ifndef mpm_materials_material_h
+#define mpm_materials_material_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/field_layout.h>
+
+#include <memory>
+#include <string>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * A constitutive model: it turns the kinematics the integrator stores on
+   * each material point (velocity gradient L, and F if the model asks for
+   * it) into Cauchy stress, and owns whatever state it needs.
+   *
+   * The integrator calls update_stresses() once per body per step; the
+   * model runs its own loop over the points, so there is one virtual call
+   * per body and none per particle.
+   *
+   * In 1D and 2D every model is the 3D model restricted to uniaxial or plane
+   * strain: the out-of-plane stretches are 1 and the out-of-plane stress is
+   * whatever the model gives. The stored stress has the in-plane components
+   * only; cauchy_stress_3d() gives all of them (output, pressure).
+   */
+  template <int dim>
+  class Material
+  {
+  public:
+    virtual ~Material() = default;
+
+    /// Add the fields this model stores on every point to @p requests.
+    virtual void
+    request_fields(FieldRequests &requests) const = 0;
+
+    /// Does the stress follow from F alone (hyperelastic, no history)?
+    /// Such a model can start from an initial displacement.
+    virtual bool
+    needs_deformation_gradient() const
+    {
+      return false;
+    }
+
+    /// Can the model start from a given stress (initialise_point)?
+    virtual bool
+    accepts_initial_stress() const
+    {
+      return true;
+    }
+
+    /// Small-strain p-wave modulus lambda + 2 mu, for the CFL time step.
+    virtual double
+    p_wave_modulus() const = 0;
+
+    /**
+     * Give a new point its initial state: the stress @p sigma0 (a full 3D
+     * tensor; in 2D and 1D the out-of-plane normal components count) and
+     * whatever state produces it. Throws a std::domain_error with the
+     * reason if the model cannot hold that stress (outside the yield
+     * surface); the caller names the parameter.
+     */
+    virtual void
+    initialise_point(double                      *properties,
+                     const FieldLayout           &layout,
+                     const SymmetricTensor<2, 3> &sigma0) const;
+
+    /// Update the stress of every locally owned point of body @p body.
+    virtual void
+    update_stresses(Particles::ParticleHandler<dim> &particles,
+                    const FieldLayout               &layout,
+                    const unsigned int               body,
+                    const double                     dt) const = 0;
+
+    /// The same for one point (tests, single-point drivers).
+    virtual void
+    update_point_stress(double            *properties,
+                        const FieldLayout &layout,
+                        const double       dt) const = 0;
+
+    /// Stored (strain) energy of one point; used for statistics only.
+    virtual double
+    strain_energy(const double      *properties,
+                  const FieldLayout &layout) const = 0;
+
+    /// The full Cauchy stress of a point, out-of-plane components included.
+    virtual SymmetricTensor<2, 3>
+    cauchy_stress_3d(const double      *properties,
+                     const FieldLayout &layout) const = 0;
+  };
+
+
+  /**
+   * The registry: every model is known by the name a scene uses in
+   * 'Body N/material', declares its parameters in a subsection of that name,
+   * and is created from it. Adding a model is a line in
+   * source/materials/registry.cc.
+   */
+  namespace MaterialRegistry
+  {
+    /// "linear elastic|neo-Hookean|...", for Patterns::Selection.
+    std::string
+    names();
+
+    /// Declare every model's subsection inside the current subsection.
+    void
+    declare_parameters(ParameterHandler &prm);
+
+    /// Create the model @p name from its subsection of the current
+    /// subsection, for a body of reference density @p density; @p path is
+    /// used in error messages.
+    template <int dim>
+    std::unique_ptr<Material<dim>>
+    create(const std::string &name,
+           ParameterHandler  &prm,
+           const std::string &path,
+           const double       density);
+  } // namespace MaterialRegistry
+} // namespace mpm
+
+#endif

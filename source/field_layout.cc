@@ -1,0 +1,41 @@
+#include <mpm/field_layout.h>
+
+namespace mpm
+{
+  template <int dim>
+  FieldLayout
+  assemble_layout(const FieldRequests &requests)
+  {
+    FieldLayout l;
+    auto        add = [&l](const std::string &name, const unsigned int n) {
+      l.description.emplace_back(name, n);
+      return l.add(n);
+    };
+    l.mass     = add("mass", 1);
+    l.volume   = add("volume", 1);
+    l.body     = add("body", 1);
+    l.velocity = add("velocity", dim);
+    l.stress = add("stress", SymmetricTensor<2, dim>::n_independent_components);
+    l.velocity_gradient = add("velocity gradient", dim * dim);
+    if (requests.deformation_gradient)
+      l.deformation_gradient = add("deformation gradient", dim * dim);
+    if (requests.initial_position)
+      l.initial_position = add("initial position", dim);
+    if (requests.affine_velocity)
+      l.affine_velocity = add("affine velocity", dim * dim);
+    if (requests.elastic_left_cauchy_green)
+      l.elastic_left_cauchy_green =
+        add("elastic left Cauchy-Green", Fields::n_embedded<dim>);
+    if (requests.plastic_strain)
+      l.plastic_strain = add("plastic strain", 1);
+    return l;
+  }
+
+
+  template FieldLayout
+  assemble_layout<1>(const FieldRequests &);
+  template FieldLayout
+  assemble_layout<2>(const FieldRequests &);
+  template FieldLayout
+  assemble_layout<3>(const FieldRequests &);
+} // namespace mpm

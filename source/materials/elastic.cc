@@ -1,0 +1,244 @@
+// The elastic models that work on the velocity gradient or on F directly:
+// small-strain elasticity in rate form, and the neo-Hookean solid.
+#include <mpm/materials/pointwise.h>
+
+#include <cmath>
+
+namespace mpm
+{
+  namespace
+  {
+    /**
+     * The Hughes-Winget incremental rotation Q = (I - A)^{-1} (I + A) for
+     * the half-step spin A = dt/2 (L - L^T)/2, in closed form (the Cayley
+     * transform of a skew tensor): Q = I + 2/(1 + |a|^2) (A + A^2), with
+     * |a|^2 = A:A/2. Exactly orthogonal for any step.
+     */
+    template <int dim>
+    inline Tensor<2, dim>
+    hughes_winget_rotation(const Tensor<2, dim> &L, const double dt)
+    {
+      const Tensor<2, dim> A  = (0.25 * dt) * (L - transpose(L));
+      const double         a2 = 0.5 * scalar_product(A, A);
+      Tensor<2, dim>       Q  = (2. / (1. + a2)) * (A + A * A);
+      for (unsigned int d = 0; d < dim; ++d)
+        Q[d][d] += 1.;
+      return Q;
+    }
+
+
+    /// Q s Q^T for a symmetric s.
+    template <int dim>
+    inline SymmetricTensor<2, dim>
+    rotate(const SymmetricTensor<2, dim> &s, const Tensor<2, dim> &Q)
+    {
+      const Tensor<2, dim>    QS = Q * s;
+      SymmetricTensor<2, dim> r;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          {
+            double v = 0;
+            for (unsigned int k = 0; k < dim; ++k)
+              v += QS[i][k] * Q[j][k];
+            r[i][j] = v;
+          }
+      return r;
+    }
+
+
+    /**
+     * Small-strain isotropic elasticity in rate form,
+     *   sigma_{n+1} = Q sigma_n Q^T + dt (lambda tr(D) I + 2 mu D),
+     * with the Hughes-Winget rotation Q = (I - dt W/2)^{-1} (I + dt W/2)
+     * built from the spin W. Q is exactly orthogonal, so a rigid rotation
+     * rotates the stress and creates none: the update is objective.
+     */
+    template <int dim>
+    class LinearElastic : public PointwiseMaterial<dim, LinearElastic<dim>>
+    {
+    public:
+      LinearElastic(ParameterHandler &prm, const std::string &path, double)
+        : c(prm, path)
+      {
+      }
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        ElasticConstants::declare(prm);
+      }
+
+      void
+      request_fields(FieldRequests &) const override
+      {
+      }
+
+      double
+      p_wave_modulus() const override
+      {
+        return c.lambda + 2. * c.mu;
+      }
+
+      inline void
+      update_point(double *p, const FieldLayout &layout, const double dt) const
+      {
+        const Tensor<2, dim> L =
+          Fields::tensor<dim>(p + layout.velocity_gradient);
+        const SymmetricTensor<2, dim> D = symmetrize(L);
+        SymmetricTensor<2, dim>       sigma =
+          Fields::symmetric<dim>(p + layout.stress);
+        if constexpr (dim > 1)
+          sigma = rotate(sigma, hughes_winget_rotation(L, dt));
+        sigma += dt * (c.lambda * trace(D) * unit_symmetric_tensor<dim>() +
+                       2. * c.mu * D);
+        Fields::store(sigma, p + layout.stress);
+      }
+
+      /// Complementary energy sigma : C^{-1} : sigma / 2 times volume, of
+      /// the in-plane stress (the energy of the plane-strain state).
+      double
+      strain_energy(const double *p, const FieldLayout &layout) const override
+      {
+        const SymmetricTensor<2, dim> s =
+          Fields::symmetric<dim>(p + layout.stress);
+        const double tr = trace(s);
+        const double w =
+          (s * s - c.lambda / (dim * c.lambda + 2. * c.mu) * tr * tr) /
+          (4. * c.mu);
+        return w * p[layout.volume];
+      }
+
+      /// Out of plane, the strain rate vanishes, so the stress there is
+      /// what the in-plane stress implies: nu (s_xx + s_yy) in plane
+      /// strain, nu / (1 - nu) s_xx in uniaxial strain (for a point that
+      /// started from such a state).
+      SymmetricTensor<2, 3>
+      cauchy_stress_3d(const double      *p,
+                       const FieldLayout &layout) const override
+      {
+        const SymmetricTensor<2, dim> s =
+          Fields::symmetric<dim>(p + layout.stress);
+        SymmetricTensor<2, 3> full;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            full[i][j] = s[i][j];
+        const double ratio = c.lambda / (dim * c.lambda + 2. * c.mu);
+        for (unsigned int d = dim; d < 3; ++d)
+          full[d][d] = ratio * trace(s);
+        return full;
+      }
+
+    private:
+      const ElasticConstants c;
+    };
+
+
+    /**
+     * Compressible neo-Hookean solid,
+     *   sigma = mu/J (b - I) + lambda ln(J)/J I,   b = F F^T,
+     * with stored energy psi = mu/2 (tr C - dim) - mu ln J + lambda/2 ln^2 J
+     * per unit reference volume.
+     */
+    template <int dim>
+    class NeoHookean : public PointwiseMaterial<dim, NeoHookean<dim>>
+    {
+    public:
+      NeoHookean(ParameterHandler &prm, const std::string &path, double)
+        : c(prm, path)
+      {
+      }
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        ElasticConstants::declare(prm);
+      }
+
+      void
+      request_fields(FieldRequests &requests) const override
+      {
+        requests.deformation_gradient = true;
+      }
+
+      bool
+      needs_deformation_gradient() const override
+      {
+        return true;
+      }
+
+      /// Its stress follows from F: a stress it starts with would need the
+      /// F that produces it.
+      bool
+      accepts_initial_stress() const override
+      {
+        return false;
+      }
+
+      double
+      p_wave_modulus() const override
+      {
+        return c.lambda + 2. * c.mu;
+      }
+
+      inline void
+      update_point(double *p, const FieldLayout &layout, const double) const
+      {
+        Fields::store(Fields::in_plane<dim>(cauchy_stress_3d(p, layout)),
+                      p + layout.stress);
+      }
+
+      double
+      strain_energy(const double *p, const FieldLayout &layout) const override
+      {
+        const Tensor<2, dim> F =
+          Fields::tensor<dim>(p + layout.deformation_gradient);
+        const double J   = determinant(F);
+        const double lnJ = std::log(J);
+        const double psi = 0.5 * c.mu * (scalar_product(F, F) - dim) -
+                           c.mu * lnJ + 0.5 * c.lambda * lnJ * lnJ;
+        return psi * p[layout.volume] / J;
+      }
+
+      SymmetricTensor<2, 3>
+      cauchy_stress_3d(const double      *p,
+                       const FieldLayout &layout) const override
+      {
+        const Tensor<2, dim> F =
+          Fields::tensor<dim>(p + layout.deformation_gradient);
+        const double J = determinant(F);
+        // J <= 0 is caught by the integrator's kinematic update before this.
+        const SymmetricTensor<2, dim> b = symmetrize(F * transpose(F));
+        const SymmetricTensor<2, dim> in_plane =
+          (c.mu / J) * (b - unit_symmetric_tensor<dim>()) +
+          (c.lambda * std::log(J) / J) * unit_symmetric_tensor<dim>();
+        SymmetricTensor<2, 3> sigma;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            sigma[i][j] = in_plane[i][j];
+        // Out of plane b = 1, so only the volumetric term remains.
+        for (unsigned int d = dim; d < 3; ++d)
+          sigma[d][d] = c.lambda * std::log(J) / J;
+        return sigma;
+      }
+
+    private:
+      const ElasticConstants c;
+    };
+  } // namespace
+
+
+  namespace Elastic
+  {
+    MaterialEntry
+    linear_elastic()
+    {
+      return material_entry<LinearElastic>("linear elastic");
+    }
+
+    MaterialEntry
+    neo_hookean()
+    {
+      return material_entry<NeoHookean>("neo-Hookean");
+    }
+  } // namespace Elastic
+} // namespace mpm

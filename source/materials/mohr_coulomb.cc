@@ -1,0 +1,401 @@
+// Mohr-Coulomb plasticity with non-associated flow, a tension cutoff and
+// optional linear softening, in the log-strain framework (Clausen et al.
+// 2007; de Souza Neto et al. 2008, sec. 8.2).
+#include <mpm/materials/log_strain.h>
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+namespace mpm
+{
+  namespace LogStrain
+  {
+    namespace
+    {
+      /// A plane f = a . sigma - k <= 0 in principal stress space, with
+      /// plastic flow along n.
+      struct Plane
+      {
+        std::array<double, 3> a, n;
+        double                k;
+      };
+
+      double
+      dot(const std::array<double, 3> &x, const std::array<double, 3> &y)
+      {
+        return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+      }
+
+      /// Solve the m x m system A x = b (m <= 3) by Gaussian elimination
+      /// with partial pivoting; false if it is singular.
+      bool
+      solve(std::array<std::array<double, 3>, 3> A,
+            std::array<double, 3>               &b,
+            const unsigned int                   m)
+      {
+        for (unsigned int c = 0; c < m; ++c)
+          {
+            unsigned int pivot = c;
+            for (unsigned int r = c + 1; r < m; ++r)
+              if (std::abs(A[r][c]) > std::abs(A[pivot][c]))
+                pivot = r;
+            if (std::abs(A[pivot][c]) < 1e-12 * std::abs(A[0][0]))
+              return false;
+            std::swap(A[c], A[pivot]);
+            std::swap(b[c], b[pivot]);
+            for (unsigned int r = c + 1; r < m; ++r)
+              {
+                const double factor = A[r][c] / A[c][c];
+                for (unsigned int k = c; k < m; ++k)
+                  A[r][k] -= factor * A[c][k];
+                b[r] -= factor * b[c];
+              }
+          }
+        for (int c = m - 1; c >= 0; --c)
+          {
+            for (unsigned int k = c + 1; k < m; ++k)
+              b[c] -= A[c][k] * b[k];
+            b[c] /= A[c][c];
+          }
+        return true;
+      }
+    } // namespace
+
+
+    /**
+     * With principal stresses sorted, s1 >= s2 >= s3 (tension positive),
+     * Mohr-Coulomb is the plane
+     *   f = (s1 - s3) + (s1 + s3) sin phi - 2 c cos phi <= 0,
+     * and at the edges of the pyramid the planes of the neighbouring
+     * sextants, (s1, s2) and (s2, s3), take over; the tension cutoff adds
+     * the planes s_i <= t. The flow follows the same planes with the
+     * dilation angle psi.
+     *
+     * For fixed strength parameters every surface is a plane and the
+     * return is linear in the plastic multipliers, so it is found exactly:
+     * for each candidate set of active planes (one plane, an edge of two,
+     * a corner of three; the main plane first), solve for the multipliers
+     * and accept the first set whose multipliers are non-negative and whose
+     * stress satisfies every plane and stays sorted (the conditions of
+     * Clausen et al. for main plane, edges and apex, in one loop). Without
+     * a cutoff, t is the apex c cot phi, so the corner of the three cutoff
+     * planes is the apex return.
+     *
+     * Softening: c, phi and psi fall linearly from their peak to their
+     * residual values as the equivalent plastic strain grows to the
+     * 'residual plastic strain'. The return is then consistent at the end
+     * of the step: the plastic strain increment solves
+     *   x = g(x),  g(x) = increment of the return with the parameters at
+     *   eqps_n + x,
+     * by the Illinois (regula falsi) method on [0, g(residual)], which
+     * brackets the root because g grows as the material softens.
+     */
+    struct MohrCoulombFlow
+    {
+      static constexpr bool is_plastic = true;
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("cohesion",
+                          "1e4",
+                          Patterns::Anything(),
+                          "(Peak) cohesion c in Pa, >= 0.");
+        prm.declare_entry("friction angle",
+                          "30",
+                          Patterns::Anything(),
+                          "(Peak) friction angle phi in degrees, in [0, 90).");
+        prm.declare_entry("dilation angle",
+                          "0",
+                          Patterns::Anything(),
+                          "(Peak) dilation angle psi in degrees, in [0, "
+                          "friction angle] (psi = phi: associated flow).");
+        prm.declare_entry("tension cutoff",
+                          "apex",
+                          Patterns::Anything(),
+                          "Largest principal stress (tension positive) in Pa: "
+                          "a number >= 0, or 'apex' for none beyond the "
+                          "apex c cot phi.");
+        prm.declare_entry("softening",
+                          "none",
+                          Patterns::Selection("none|linear"),
+                          "none, or linear: c, phi and psi fall linearly from "
+                          "their peak to their residual values as the "
+                          "equivalent plastic strain grows from 0 to "
+                          "'residual plastic strain'.");
+        prm.declare_entry("residual cohesion",
+                          "0",
+                          Patterns::Anything(),
+                          "Softening: residual cohesion in Pa, in [0, "
+                          "cohesion].");
+        prm.declare_entry("residual friction angle",
+                          "0",
+                          Patterns::Anything(),
+                          "Softening: residual friction angle in degrees, in "
+                          "[0, friction angle].");
+        prm.declare_entry("residual dilation angle",
+                          "0",
+                          Patterns::Anything(),
+                          "Softening: residual dilation angle in degrees, in "
+                          "[0, residual friction angle].");
+        prm.declare_entry("residual plastic strain",
+                          "0.1",
+                          Patterns::Anything(),
+                          "Softening: equivalent plastic strain at which the "
+                          "residual values are reached, > 0.");
+      }
+
+      struct Strength
+      {
+        double c, phi, psi;
+      };
+
+      MohrCoulombFlow(ParameterHandler       &prm,
+                      const std::string      &path,
+                      const ElasticConstants &constants)
+        : elasticity(constants)
+      {
+        peak.c   = Parse::bounded_double(prm, path, "cohesion", 0, 1e300);
+        peak.phi = parse_angle(prm, path, "friction angle", 0, 90);
+        peak.psi = parse_angle(
+          prm, path, "dilation angle", 0, peak.phi * 180 / M_PI, false);
+        cutoff    = parse_tension_cutoff(prm, path);
+        softening = prm.get("softening") == "linear";
+        residual  = peak;
+        if (softening)
+          {
+            residual.c =
+              Parse::bounded_double(prm, path, "residual cohesion", 0, peak.c);
+            residual.phi    = parse_angle(prm,
+                                       path,
+                                       "residual friction angle",
+                                       0,
+                                       peak.phi * 180 / M_PI,
+                                       false);
+            residual.psi    = parse_angle(prm,
+                                       path,
+                                       "residual dilation angle",
+                                       0,
+                                       residual.phi * 180 / M_PI,
+                                       false);
+            residual_strain = Parse::bounded_double(
+              prm, path, "residual plastic strain", 0, 1e300, true);
+          }
+      }
+
+      Strength
+      strength(const double eqps) const
+      {
+        if (!softening)
+          return peak;
+        const double w = std::min(eqps / residual_strain, 1.);
+        return {peak.c + w * (residual.c - peak.c),
+                peak.phi + w * (residual.phi - peak.phi),
+                peak.psi + w * (residual.psi - peak.psi)};
+      }
+
+      /// The planes for strength @p m: three Mohr-Coulomb planes of the
+      /// sorted sextant, then the cutoff planes (if any).
+      unsigned int
+      planes(const Strength &m, std::array<Plane, 6> &p) const
+      {
+        const double sf = std::sin(m.phi), sp = std::sin(m.psi);
+        const double k = 2 * m.c * std::cos(m.phi);
+        // Main plane (s1, s3); edge planes (s1, s2) and (s2, s3).
+        const unsigned int pairs[3][2] = {{0, 2}, {0, 1}, {1, 2}};
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            p[i].a = p[i].n     = {{0, 0, 0}};
+            p[i].a[pairs[i][0]] = 1 + sf, p[i].a[pairs[i][1]] = -(1 - sf);
+            p[i].n[pairs[i][0]] = 1 + sp, p[i].n[pairs[i][1]] = -(1 - sp);
+            p[i].k = k;
+          }
+        const double t =
+          std::min(cutoff,
+                   sf > 0 ? m.c * std::cos(m.phi) / sf
+                          : std::numeric_limits<double>::infinity());
+        if (!std::isfinite(t))
+          return 3;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            p[3 + i].a = p[3 + i].n = {{0, 0, 0}};
+            p[3 + i].a[i] = p[3 + i].n[i] = 1;
+            p[3 + i].k                    = t;
+          }
+        return 6;
+      }
+
+      /// The largest yield function of sorted stresses @p s.
+      static double
+      max_yield(const std::array<Plane, 6>  &p,
+                const unsigned int           n,
+                const std::array<double, 3> &s)
+      {
+        double f = -std::numeric_limits<double>::infinity();
+        for (unsigned int i = 0; i < n; ++i)
+          f = std::max(f, dot(p[i].a, s) - p[i].k);
+        return f;
+      }
+
+      /// Return sorted trial stresses @p s for fixed strength @p m (see the
+      /// class documentation). False if @p s is admissible.
+      bool
+      return_sorted(std::array<double, 3> &s, const Strength &m) const
+      {
+        std::array<Plane, 6> p;
+        const unsigned int   n = planes(m, p);
+        const double         scale =
+          std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]) + m.c + 1e-300;
+        const double tolerance = 1e-12 * scale;
+        if (max_yield(p, n, s) <= tolerance)
+          return false;
+        // The stress change per unit multiplier of each plane, D n.
+        std::array<std::array<double, 3>, 6> Dn;
+        for (unsigned int j = 0; j < n; ++j)
+          Dn[j] = elasticity.stress(p[j].n);
+        // Candidate active sets, one plane before two before three, the
+        // main plane first.
+        for (unsigned int size = 1; size <= 3; ++size)
+          for (unsigned int set = 1; set < (1u << n); ++set)
+            {
+              if (__builtin_popcount(set) != int(size))
+                continue;
+              std::array<unsigned int, 3> active;
+              unsigned int                m_active = 0;
+              for (unsigned int i = 0; i < n; ++i)
+                if (set & (1u << i))
+                  active[m_active++] = i;
+              std::array<std::array<double, 3>, 3> A;
+              std::array<double, 3>                dgamma;
+              for (unsigned int r = 0; r < size; ++r)
+                {
+                  dgamma[r] = dot(p[active[r]].a, s) - p[active[r]].k;
+                  for (unsigned int c = 0; c < size; ++c)
+                    A[r][c] = dot(p[active[r]].a, Dn[active[c]]);
+                }
+              if (!solve(A, dgamma, size))
+                continue;
+              bool ok = true;
+              for (unsigned int r = 0; r < size; ++r)
+                ok = ok && dgamma[r] >= -1e-14;
+              if (!ok)
+                continue;
+              std::array<double, 3> t = s;
+              for (unsigned int r = 0; r < size; ++r)
+                for (unsigned int i = 0; i < 3; ++i)
+                  t[i] -= dgamma[r] * Dn[active[r]][i];
+              if (t[0] < t[1] - tolerance || t[1] < t[2] - tolerance ||
+                  max_yield(p, n, t) > tolerance)
+                continue;
+              s = t;
+              return true;
+            }
+        // Not reached for a consistent set of planes; the apex is the safe
+        // answer.
+        const double apex = p[n - 1].k;
+        s                 = {{apex, apex, apex}};
+        return true;
+      }
+
+      double
+      yield_function(const std::array<double, 3> &tau, const double eqps) const
+      {
+        std::array<double, 3> s = tau;
+        std::sort(s.begin(), s.end(), std::greater<double>());
+        std::array<Plane, 6> p;
+        const unsigned int   n = planes(strength(eqps), p);
+        return max_yield(p, n, s);
+      }
+
+      bool
+      return_map(std::array<double, 3> &tau, const double eqps) const
+      {
+        std::array<unsigned int, 3> order = {{0, 1, 2}};
+        std::sort(order.begin(),
+                  order.end(),
+                  [&](unsigned int i, unsigned int j) {
+                    return tau[i] > tau[j];
+                  });
+        const std::array<double, 3> trial = {
+          {tau[order[0]], tau[order[1]], tau[order[2]]}};
+        std::array<double, 3> s = trial;
+        if (!return_sorted(s, strength(eqps)))
+          return false;
+        if (softening && eqps < residual_strain)
+          s = consistent_softening_return(trial, eqps);
+        for (unsigned int i = 0; i < 3; ++i)
+          tau[order[i]] = s[i];
+        return true;
+      }
+
+      /// The return whose strength is that of its own end-of-step plastic
+      /// strain (see the class documentation).
+      std::array<double, 3>
+      consistent_softening_return(const std::array<double, 3> &trial,
+                                  const double                 eqps) const
+      {
+        auto returned = [&](const double x) {
+          std::array<double, 3> s = trial;
+          return_sorted(s, strength(eqps + x));
+          return s;
+        };
+        auto h = [&](const double x) {
+          return elasticity.equivalent_plastic_strain(trial, returned(x)) - x;
+        };
+        double a = 0, fa = h(0);
+        double b = std::max(residual_strain - eqps, 0.) +
+                   elasticity.equivalent_plastic_strain(
+                     trial, returned(residual_strain - eqps));
+        double fb = h(b);
+        if (fa <= 0)
+          return returned(0);
+        if (fb >= 0)
+          return returned(b);
+        int    side = 0;
+        double x    = a;
+        for (unsigned int it = 0; it < 100; ++it)
+          {
+            x              = (a * fb - b * fa) / (fb - fa);
+            const double f = h(x);
+            if (std::abs(f) <= 1e-14 * (1e-6 + x) || b - a < 1e-15)
+              break;
+            if (f * fb > 0)
+              {
+                b = x, fb = f;
+                if (side == -1)
+                  fa *= 0.5;
+                side = -1;
+              }
+            else
+              {
+                a = x, fa = f;
+                if (side == 1)
+                  fb *= 0.5;
+                side = 1;
+              }
+          }
+        return returned(x);
+      }
+
+      const PrincipalElasticity elasticity;
+      Strength                  peak, residual;
+      double                    cutoff;
+      bool                      softening;
+      double                    residual_strain = 1;
+    };
+
+    template <int dim>
+    using MohrCoulomb = Model<dim, MohrCoulombFlow>;
+  } // namespace LogStrain
+
+
+  namespace LogStrainModels
+  {
+    MaterialEntry
+    mohr_coulomb()
+    {
+      return material_entry<LogStrain::MohrCoulomb>("Mohr-Coulomb");
+    }
+  } // namespace LogStrainModels
+} // namespace mpm

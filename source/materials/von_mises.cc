@@ -1,0 +1,92 @@
+// J2 plasticity with linear isotropic hardening, in the log-strain
+// framework (de Souza Neto et al. 2008, ch. 7 and 14).
+#include <mpm/materials/log_strain.h>
+
+namespace mpm
+{
+  namespace LogStrain
+  {
+    /**
+     * Yield function f = q - (sigma_y + H eqps), q = sqrt(3/2 s:s) of the
+     * deviatoric Kirchhoff stress s. Radial return in principal space: the
+     * trial deviator shrinks by 1 - 3 mu dgamma / q_trial with
+     * dgamma = f_trial / (3 mu + H), exact for linear hardening; the
+     * pressure does not change.
+     */
+    struct VonMisesFlow
+    {
+      static constexpr bool is_plastic = true;
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("yield stress",
+                          "1e4",
+                          Patterns::Anything(),
+                          "Initial uniaxial yield stress sigma_y in Pa, > 0 "
+                          "(in pure shear the material yields at sigma_y / "
+                          "sqrt 3).");
+        prm.declare_entry("hardening modulus",
+                          "0",
+                          Patterns::Anything(),
+                          "Linear isotropic hardening modulus H in Pa, >= 0: "
+                          "the yield stress is sigma_y + H eqps.");
+      }
+
+      VonMisesFlow(ParameterHandler       &prm,
+                   const std::string      &path,
+                   const ElasticConstants &c)
+        : yield_stress(
+            Parse::bounded_double(prm, path, "yield stress", 0, 1e300, true))
+        , hardening(
+            Parse::bounded_double(prm, path, "hardening modulus", 0, 1e300))
+        , mu(c.mu)
+      {
+      }
+
+      /// Mean and the equivalent stress q of principal stresses.
+      static std::pair<double, double>
+      invariants(const std::array<double, 3> &tau)
+      {
+        const double p  = (tau[0] + tau[1] + tau[2]) / 3.;
+        const double s0 = tau[0] - p, s1 = tau[1] - p, s2 = tau[2] - p;
+        return {p, std::sqrt(1.5 * (s0 * s0 + s1 * s1 + s2 * s2))};
+      }
+
+      double
+      yield_function(const std::array<double, 3> &tau, const double eqps) const
+      {
+        return invariants(tau).second - (yield_stress + hardening * eqps);
+      }
+
+      bool
+      return_map(std::array<double, 3> &tau, const double eqps) const
+      {
+        const auto [p, q] = invariants(tau);
+        const double f    = q - (yield_stress + hardening * eqps);
+        if (f <= 0)
+          return false;
+        const double dgamma = f / (3. * mu + hardening);
+        const double factor = 1. - 3. * mu * dgamma / q;
+        for (double &t : tau)
+          t = p + factor * (t - p);
+        return true;
+      }
+
+      const double yield_stress, hardening, mu;
+    };
+
+    template <int dim>
+    using VonMises = Model<dim, VonMisesFlow>;
+  } // namespace LogStrain
+
+
+  namespace LogStrainModels
+  {
+    MaterialEntry
+    von_mises()
+    {
+      return material_entry<LogStrain::VonMises>("von Mises");
+    }
+  } // namespace LogStrainModels
+} // namespace mpm
