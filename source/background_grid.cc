@@ -290,6 +290,40 @@ namespace mpm
 
 
   template <int dim>
+  std::vector<unsigned int>
+  BackgroundGrid<dim>::owned_nodes_in_box(const Point<dim> &lower,
+                                          const Point<dim> &upper) const
+  {
+    // A node counts if it lies in the box up to a thousandth of a cell, so
+    // that a box drawn on grid lines includes them.
+    std::vector<bool>                    inside(n_owned_nodes, false);
+    std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(cell_dofs);
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const Point<dim> x  = cell->vertex(v);
+              bool             in = true;
+              for (unsigned int d = 0; d < dim; ++d)
+                in = in && x[d] >= lower[d] - 1e-3 * h[d] &&
+                     x[d] <= upper[d] + 1e-3 * h[d];
+              // FE_Q(1): the DoF of vertex v is the v-th of the cell.
+              if (in && scalar_partitioner->in_local_range(cell_dofs[v]))
+                inside[scalar_partitioner->global_to_local(cell_dofs[v])] =
+                  true;
+            }
+        }
+    std::vector<unsigned int> nodes;
+    for (unsigned int i = 0; i < n_owned_nodes; ++i)
+      if (inside[i])
+        nodes.push_back(i);
+    return nodes;
+  }
+
+
+  template <int dim>
   std::shared_ptr<const Utilities::MPI::Partitioner>
   BackgroundGrid<dim>::make_partitioner(const unsigned int n_components) const
   {

@@ -30,6 +30,7 @@ namespace mpm
     prm.leave_subsection();
     for (unsigned int b = 0; b < n_bodies; ++b)
       BodyParameters<2>::declare_parameters(prm, b);
+    VelocityRegionParameters<2>::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
     VerificationParameters::declare_parameters(prm);
   }
@@ -49,6 +50,7 @@ namespace mpm
     body_parameters.resize(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
       body_parameters[b].parse_parameters(prm, b);
+    velocity_region_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     verification_parameters.parse_parameters(prm);
   }
@@ -89,16 +91,21 @@ namespace mpm
                                                    fields,
                                                    comm);
     points->generate();
+    velocity_region =
+      std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
     integrator = std::make_unique<TimeIntegrator<dim>>(
-      integrator_parameters, *grid, *points, *timer, comm);
+      integrator_parameters, *grid, *points, *velocity_region, *timer, comm);
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
+    std::vector<std::string> columns = verification->columns();
+    for (const auto &c : velocity_region->columns())
+      columns.push_back(c);
     output = std::make_unique<Output<dim>>(output_parameters,
                                            *grid,
                                            *points,
                                            *integrator,
                                            integrator_parameters.gravity,
-                                           verification->columns(),
+                                           columns,
                                            comm);
     print_scene_summary();
     write_output(wall.wall_time());
@@ -153,9 +160,12 @@ namespace mpm
     TimerOutput::Scope scope(*timer, "output");
     const auto         s =
       Statistics<dim>::compute(*points, integrator_parameters.gravity, comm);
-    const auto extra = verification->evaluate(s, integrator->time());
+    auto extra = verification->evaluate(s, integrator->time());
     if (integrator->time() == last_output_time)
       return;
+    for (const double f :
+         velocity_region->mean_force_since_last_call(integrator->time(), comm))
+      extra.push_back(f);
     output->write(s, extra, wall_seconds);
     last_output_time = integrator->time();
   }

@@ -215,11 +215,13 @@ namespace mpm
     const IntegratorParameters<dim> &parameters,
     const BackgroundGrid<dim>       &grid,
     MaterialPoints<dim>             &points,
+    VelocityRegion<dim>             &velocity_region,
     TimerOutput                     &timer,
     MPI_Comm                         comm)
     : prm(parameters)
     , grid(grid)
     , points(points)
+    , velocity_region(velocity_region)
     , timer(timer)
     , comm(comm)
   {
@@ -530,20 +532,23 @@ namespace mpm
           vel[v_new + d] =
             (vel[v_old + d] + dt_m * node[force + d]) * damping_factor;
       }
-    apply_velocity_constraints(v_new);
+    apply_velocity_constraints(v_new, dt);
     grid_velocity.update_ghost_values();
   }
 
 
   template <int dim>
   void
-  TimeIntegrator<dim>::apply_velocity_constraints(const unsigned int slot)
+  TimeIntegrator<dim>::apply_velocity_constraints(const unsigned int slot,
+                                                  const double       dt)
   {
     double *u = grid_velocity.get_values();
     for (const auto &[i, mask] : grid.constrained_nodes())
       for (unsigned int d = 0; d < dim; ++d)
         if (mask & (1u << d))
           u[n_velocities * i + slot + d] = 0;
+    if (velocity_region.enabled())
+      velocity_region.enforce(u, n_velocities, slot, dt);
   }
 
 

@@ -85,8 +85,9 @@ end
                     std::cout,
                     TimerOutput::never,
                     TimerOutput::wall_times);
+  mpm::VelocityRegion<2> no_region(mpm::VelocityRegionParameters<2>(), grid);
   mpm::TimeIntegrator<2> integrator(
-    integrator_parameters, grid, points, timer, comm);
+    integrator_parameters, grid, points, no_region, timer, comm);
 
   const Moments before = measure(points);
   for (unsigned int i = 0; i < 100; ++i)

@@ -180,6 +180,10 @@ namespace mpm
       return node_constraints;
     }
 
+    /// Local indices of the owned nodes in the box [lower, upper].
+    std::vector<unsigned int>
+    owned_nodes_in_box(const Point<dim> &lower, const Point<dim> &upper) const;
+
     /// True if the box [lower, upper] lies inside the grid.
     bool
     contains(const Point<dim> &lower, const Point<dim> &upper) const;

@@ -52,12 +52,14 @@ namespace mpm
     GridParameters<dim>              grid_parameters;
     IntegratorParameters<dim>        integrator_parameters;
     std::vector<BodyParameters<dim>> body_parameters;
+    VelocityRegionParameters<dim>    velocity_region_parameters;
     OutputParameters                 output_parameters;
     VerificationParameters           verification_parameters;
 
     std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
     std::unique_ptr<BackgroundGrid<dim>> grid;
     std::unique_ptr<MaterialPoints<dim>> points;
+    std::unique_ptr<VelocityRegion<dim>> velocity_region;
     std::unique_ptr<TimeIntegrator<dim>> integrator;
     std::unique_ptr<Verification<dim>>   verification;
     std::unique_ptr<Output<dim>>         output;

@@ -8,6 +8,7 @@
 
 #include <mpm/background_grid.h>
 #include <mpm/basis.h>
+#include <mpm/boundary_conditions/velocity_region.h>
 #include <mpm/material_points.h>
 
 namespace mpm
@@ -86,6 +87,7 @@ namespace mpm
     TimeIntegrator(const IntegratorParameters<dim> &parameters,
                    const BackgroundGrid<dim>       &grid,
                    MaterialPoints<dim>             &points,
+                   VelocityRegion<dim>             &velocity_region,
                    TimerOutput                     &timer,
                    MPI_Comm                         comm);
 
@@ -175,8 +177,10 @@ namespace mpm
                       const unsigned int slot);
     void
     update_stresses(const double dt);
+    /// Boundary constraints on the nodal velocities in @p slot; @p dt > 0
+    /// at the force update, where reactions are measured.
     void
-    apply_velocity_constraints(const unsigned int slot);
+    apply_velocity_constraints(const unsigned int slot, const double dt = 0);
     /// Visit every locally owned point with its stencil (see there).
     template <typename Basis, typename Kernel>
     void
@@ -203,6 +207,7 @@ namespace mpm
     const IntegratorParameters<dim> prm;
     const BackgroundGrid<dim>      &grid;
     MaterialPoints<dim>            &points;
+    VelocityRegion<dim>            &velocity_region;
     TimerOutput                    &timer;
     MPI_Comm                        comm;
 

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Strip footing on a Tresca soil: bearing pressure against Prandtl.
+
+Runs benchmarks/plasticity/strip_footing.prm over a ladder of grids and
+prints one CSV row per run: cells across the footing's half width, the
+peak bearing pressure q / c (from the region force in statistics.csv,
+q = -2 F_y / B per unit length of the half model), its error against
+Prandtl's 2 + pi, and the wall time.
+
+  strip_footing.py --exe build/dealii-mpm                   the ladder
+  strip_footing.py --exe ... --cells 10 --check --max-error 0.12
+                                                            a ctest assertion
+"""
+import argparse, csv, math, os, subprocess, sys, tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PRANDTL = 2 + math.pi
+
+
+def run(exe, per_half_width, end_time):
+    # The grid is 5 m x 3.5 m and the footing's half width 0.5 m.
+    n = per_half_width
+    with tempfile.TemporaryDirectory() as out:
+        args = [exe, os.path.join(HERE, "strip_footing.prm"),
+                "-s", "Grid/cells=%d,%d" % (10 * n, 7 * n),
+                "-s", "Simulation/end time=%g" % end_time,
+                "-s", "Output/directory=" + out,
+                "-s", "Output/fields=plastic strain",
+                "-s", "Output/progress interval=1e9"]
+        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
+        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
+        timing = {r["phase"]: r for r in
+                  csv.DictReader(open(os.path.join(out, "timing.csv")))}
+    c, half_width = 1e4, 0.5
+    q = [-float(r["region_force_y"]) / half_width / c for r in rows]
+    return max(q), float(rows[-1]["wall_seconds"]), \
+        float(timing["steps"]["ns_per_particle_step"])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--exe", required=True)
+    parser.add_argument("--cells", default="5,10,20",
+                        help="cells across the half width, comma-separated")
+    parser.add_argument("--end-time", type=float, default=3.0,
+                        help="simulated seconds (settlement 0.02 m/s x t)")
+    parser.add_argument("--check", action="store_true",
+                        help="fail unless every peak lies within --max-error "
+                             "of Prandtl's value and above it")
+    parser.add_argument("--max-error", type=float, default=0.05)
+    a = parser.parse_args()
+
+    print("cells_per_half_width,h,peak_q_over_c,prandtl,relative_error,"
+          "wall_seconds,ns_per_particle_step")
+    ok = True
+    for n in [int(x) for x in a.cells.split(",")]:
+        peak, wall, ns = run(a.exe, n, a.end_time)
+        error = peak / PRANDTL - 1
+        print("%d,%g,%.5f,%.5f,%.5f,%.2f,%.1f" %
+              (n, 0.5 / n, peak, PRANDTL, error, wall, ns), flush=True)
+        # Coarse grids overestimate (the footing's nodal edge reaches half a
+        # cell beyond B/2); a value below Prandtl's would be suspicious too.
+        ok = ok and -0.01 <= error <= a.max_error
+    if a.check and not ok:
+        print("FAILED: a peak bearing pressure lies outside [-1%%, %g] of "
+              "2 + pi" % a.max_error)
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()

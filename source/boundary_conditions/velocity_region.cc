@@ -1,0 +1,166 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/boundary_conditions/velocity_region.h>
+#include <mpm/parameters.h>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  VelocityRegionParameters<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.enter_subsection("Velocity region");
+    prm.declare_entry("enabled",
+                      "false",
+                      Patterns::Bool(),
+                      "true or false: prescribe the velocity of the grid "
+                      "nodes in a box (a rigid footing or plate pushed into "
+                      "the material); its mean force on the material is "
+                      "written to statistics.csv (region_force_x, ...).");
+    prm.declare_entry("lower corner",
+                      "0",
+                      Patterns::Anything(),
+                      "Lower corner of the box, one value per dimension; "
+                      "nodes on its faces belong to it.");
+    prm.declare_entry("upper corner",
+                      "0",
+                      Patterns::Anything(),
+                      "Upper corner of the box.");
+    prm.declare_entry("velocity",
+                      "0",
+                      Patterns::Anything(),
+                      "Prescribed velocity in m/s, one entry per component, "
+                      "each a number or 'free' (that component is not "
+                      "constrained): '0, -1e-3' is a rough footing moving "
+                      "down, 'free, -1e-3' a smooth one.");
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  VelocityRegionParameters<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    const std::string path = "Boundary conditions/Velocity region";
+    prm.enter_subsection("Boundary conditions");
+    prm.enter_subsection("Velocity region");
+    enabled = prm.get_bool("enabled");
+    if (enabled)
+      {
+        lower_corner = Parse::point<dim>(prm, path, "lower corner");
+        upper_corner = Parse::point<dim>(prm, path, "upper corner");
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!(upper_corner[d] >= lower_corner[d]))
+            throw InputError(path + "/upper corner",
+                             prm.get("upper corner"),
+                             "must not be below the lower corner");
+        const std::string text    = prm.get("velocity");
+        auto              entries = Utilities::split_string_list(text, ',');
+        if (entries.size() == 1)
+          entries.assign(dim, entries[0]);
+        if (entries.size() != dim)
+          throw InputError(path + "/velocity",
+                           text,
+                           "expects " + std::to_string(dim) +
+                             " comma-separated entries, each a number or "
+                             "'free'");
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            constrained[d] = entries[d] != "free";
+            velocity[d]    = 0;
+            if (constrained[d])
+              try
+                {
+                  velocity[d] = Utilities::string_to_double(entries[d]);
+                }
+              catch (...)
+                {
+                  throw InputError(path + "/velocity",
+                                   text,
+                                   "each entry must be a number or 'free'");
+                }
+          }
+      }
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  VelocityRegion<dim>::VelocityRegion(
+    const VelocityRegionParameters<dim> &parameters,
+    const BackgroundGrid<dim>           &grid)
+    : prm(parameters)
+    , nodes(parameters.enabled
+              ? grid.owned_nodes_in_box(parameters.lower_corner,
+                                        parameters.upper_corner)
+              : std::vector<unsigned int>())
+  {
+    if (prm.enabled &&
+        Utilities::MPI::sum(nodes.size(),
+                            grid.triangulation().get_communicator()) == 0)
+      throw InputError("Boundary conditions/Velocity region/upper corner",
+                       "",
+                       "the box holds no grid node; make it reach a node");
+  }
+
+
+  template <int dim>
+  void
+  VelocityRegion<dim>::enforce(double            *u,
+                               const unsigned int stride,
+                               const unsigned int slot,
+                               const double       dt)
+  {
+    for (const unsigned int i : nodes)
+      {
+        double *node = u + stride * i;
+        for (unsigned int d = 0; d < dim; ++d)
+          if (prm.constrained[d])
+            {
+              if (dt > 0)
+                impulse[d] += node[0] * (prm.velocity[d] - node[slot + d]);
+              node[slot + d] = prm.velocity[d];
+            }
+      }
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  VelocityRegion<dim>::columns() const
+  {
+    std::vector<std::string> c;
+    if (prm.enabled)
+      for (unsigned int d = 0; d < dim; ++d)
+        c.push_back(std::string("region_force_") + "xyz"[d]);
+    return c;
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  VelocityRegion<dim>::mean_force_since_last_call(const double time,
+                                                  MPI_Comm     comm)
+  {
+    std::vector<double> force;
+    if (!prm.enabled)
+      return force;
+    const Tensor<1, dim> total = Utilities::MPI::sum(impulse, comm);
+    for (unsigned int d = 0; d < dim; ++d)
+      force.push_back(time > last_time ? total[d] / (time - last_time) : 0.);
+    impulse   = Tensor<1, dim>();
+    last_time = time;
+    return force;
+  }
+
+
+  template struct VelocityRegionParameters<1>;
+  template struct VelocityRegionParameters<2>;
+  template struct VelocityRegionParameters<3>;
+  template class VelocityRegion<1>;
+  template class VelocityRegion<2>;
+  template class VelocityRegion<3>;
+} // namespace mpm
