@@ -44,13 +44,12 @@ namespace mpm
       {
       }
 
-      /// Mean and the equivalent stress q of principal stresses.
+      /// Mean and the equivalent stress q = sqrt(3/2) |s|.
       static std::pair<double, double>
       invariants(const std::array<double, 3> &tau)
       {
-        const double p  = (tau[0] + tau[1] + tau[2]) / 3.;
-        const double s0 = tau[0] - p, s1 = tau[1] - p, s2 = tau[2] - p;
-        return {p, std::sqrt(1.5 * (s0 * s0 + s1 * s1 + s2 * s2))};
+        const auto [p, s] = mean_and_deviator_norm(tau);
+        return {p, std::sqrt(1.5) * s};
       }
 
       double

@@ -174,6 +174,16 @@ namespace mpm
     }
 
 
+    /// Mean of principal stresses and the norm |s| of their deviator.
+    inline std::pair<double, double>
+    mean_and_deviator_norm(const std::array<double, 3> &tau)
+    {
+      const double p  = (tau[0] + tau[1] + tau[2]) / 3.;
+      const double s0 = tau[0] - p, s1 = tau[1] - p, s2 = tau[2] - p;
+      return {p, std::sqrt(s0 * s0 + s1 * s1 + s2 * s2)};
+    }
+
+
     /// Isotropic elasticity between principal log strains and principal
     /// Kirchhoff stresses.
     struct PrincipalElasticity
