@@ -210,3 +210,17 @@ mpm_test(bad_initial_stress_neo_hookean PRM block_settling.prm EXIT 1
 mpm_test(bad_dilation_angle PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
   ARGS -s "Bodies/Body 0/material=Mohr-Coulomb" -s "Bodies/Body 0/Mohr-Coulomb/dilation angle=40"
   ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/dilation angle' = '40': allowed range is \\[0, 30\\]")
+#    Mohr-Coulomb with softening under the footing: a reviewed history
+#    (energies, momentum, region force), and 2 ranks reproduce it (the
+#    region force is summed over ranks).
+set(footing_mc ARGS -s "Grid/cells=20,14" -s "Simulation/end time=1"
+  -s "Output/interval=0.1"
+  -s "Bodies/Body 0/material=Mohr-Coulomb"
+  -s "Bodies/Body 0/Mohr-Coulomb/Young's modulus=1e7"
+  -s "Bodies/Body 0/Mohr-Coulomb/cohesion=1e4"
+  -s "Bodies/Body 0/Mohr-Coulomb/softening=linear"
+  -s "Bodies/Body 0/Mohr-Coulomb/residual cohesion=5e3"
+  -s "Bodies/Body 0/Mohr-Coulomb/residual friction angle=20")
+mpm_test(footing_mohr_coulomb PRM ../benchmarks/plasticity/strip_footing.prm ${footing_mc})
+mpm_test(footing_mohr_coulomb_mpi2 PRM ../benchmarks/plasticity/strip_footing.prm NP 2
+  REFERENCE footing_mohr_coulomb.output RELTOL 1e-7 ${footing_mc})
