@@ -218,7 +218,7 @@ mpm_test(bad_dilation_angle PRM ../benchmarks/plasticity/strip_footing.prm EXIT 
 #    Mohr-Coulomb with softening under the footing: a reviewed history
 #    (energies, momentum, region force), and 2 ranks reproduce it (the
 #    region force is summed over ranks).
-set(footing_mc ARGS -s "Grid/cells=20,14" -s "Simulation/end time=1"
+set(footing_mc ARGS -s "Grid/cells=20,14" -s "Simulation/end time=0.5"
   -s "Output/interval=0.1"
   -s "Bodies/Body 0/material=Mohr-Coulomb"
   -s "Bodies/Body 0/Mohr-Coulomb/Young's modulus=1e7"
