@@ -572,11 +572,8 @@ namespace
   SymmetricTensor<2, 3>
   half_log(const SymmetricTensor<2, 3> &b)
   {
-    const auto            s = LogStrain::decompose<3>(b);
-    std::array<double, 3> l;
-    for (unsigned int i = 0; i < 3; ++i)
-      l[i] = 0.5 * std::log(s.values[i]);
-    return LogStrain::compose<3>(l, s);
+    const auto s = LogStrain::decompose<3>(b);
+    return LogStrain::compose<3>(LogStrain::half_log(s), s);
   }
 
   /**

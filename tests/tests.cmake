@@ -229,3 +229,10 @@ set(footing_mc ARGS -s "Grid/cells=20,14" -s "Simulation/end time=0.5"
 mpm_test(footing_mohr_coulomb PRM ../benchmarks/plasticity/strip_footing.prm ${footing_mc})
 mpm_test(footing_mohr_coulomb_mpi2 PRM ../benchmarks/plasticity/strip_footing.prm NP 2
   REFERENCE footing_mohr_coulomb.output RELTOL 1e-7 ${footing_mc})
+#    Bad values of the new parameters name the parameter.
+mpm_test(bad_velocity_region PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ARGS -s "Boundary conditions/Velocity region/velocity=0, fast"
+  ERROR "parameter 'Boundary conditions/Velocity region/velocity' = '0, fast': each entry must be a number or 'free'")
+mpm_test(bad_tension_cutoff PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ARGS -s "Bodies/Body 0/material=Drucker-Prager" -s "Bodies/Body 0/Drucker-Prager/tension cutoff=-5"
+  ERROR "parameter 'Bodies/Body 0/Drucker-Prager/tension cutoff' = '-5': must be >= 0")

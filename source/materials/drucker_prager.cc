@@ -32,19 +32,7 @@ namespace mpm
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry("cohesion",
-                          "1e4",
-                          Patterns::Anything(),
-                          "Cohesion c in Pa, >= 0.");
-        prm.declare_entry("friction angle",
-                          "30",
-                          Patterns::Anything(),
-                          "Friction angle phi in degrees, in [0, 90).");
-        prm.declare_entry("dilation angle",
-                          "0",
-                          Patterns::Anything(),
-                          "Dilation angle psi in degrees, in [0, friction "
-                          "angle] (psi = phi: associated flow).");
+        FrictionalStrength::declare_parameters(prm, false);
         prm.declare_entry("tension cutoff",
                           "apex",
                           Patterns::Anything(),
@@ -81,18 +69,14 @@ namespace mpm
         : mu(c.mu)
         , K(c.bulk_modulus())
       {
-        const double cohesion =
-          Parse::bounded_double(prm, path, "cohesion", 0, 1e300);
-        const double phi = parse_angle(prm, path, "friction angle", 0, 90);
-        const double psi =
-          parse_angle(prm, path, "dilation angle", 0, phi * 180 / M_PI, false);
-        const std::string match = prm.get("cone");
-        std::tie(eta, xi)       = cone(match, phi);
-        eta_bar                 = cone(match, psi).first;
-        xi_c                    = xi * cohesion;
-        p_max                   = std::min(parse_tension_cutoff(prm, path),
+        const auto        strength = FrictionalStrength::parse(prm, path);
+        const std::string match    = prm.get("cone");
+        std::tie(eta, xi)          = cone(match, strength.phi);
+        eta_bar                    = cone(match, strength.psi).first;
+        xi_c                       = xi * strength.c;
+        p_max                      = std::min(parse_tension_cutoff(prm, path),
                          eta > 0 ? xi_c / eta
-                                                   : std::numeric_limits<double>::infinity());
+                                                      : std::numeric_limits<double>::infinity());
       }
 
       /// Mean stress and sqrt(J2) = |s| / sqrt 2.

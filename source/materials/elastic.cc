@@ -160,12 +160,6 @@ namespace mpm
         requests.deformation_gradient = true;
       }
 
-      bool
-      needs_deformation_gradient() const override
-      {
-        return true;
-      }
-
       /// Its stress follows from F: a stress it starts with would need the
       /// F that produces it.
       bool
@@ -183,8 +177,7 @@ namespace mpm
       inline void
       update_point(double *p, const FieldLayout &layout, const double) const
       {
-        Fields::store(Fields::in_plane<dim>(cauchy_stress_3d(p, layout)),
-                      p + layout.stress);
+        Fields::store(stress(p, layout), p + layout.stress);
       }
 
       double
@@ -203,25 +196,33 @@ namespace mpm
       cauchy_stress_3d(const double      *p,
                        const FieldLayout &layout) const override
       {
-        const Tensor<2, dim> F =
-          Fields::tensor<dim>(p + layout.deformation_gradient);
-        const double J = determinant(F);
-        // J <= 0 is caught by the integrator's kinematic update before this.
-        const SymmetricTensor<2, dim> b = symmetrize(F * transpose(F));
-        const SymmetricTensor<2, dim> in_plane =
-          (c.mu / J) * (b - unit_symmetric_tensor<dim>()) +
-          (c.lambda * std::log(J) / J) * unit_symmetric_tensor<dim>();
-        SymmetricTensor<2, 3> sigma;
+        const SymmetricTensor<2, dim> in_plane = stress(p, layout);
+        SymmetricTensor<2, 3>         sigma;
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
             sigma[i][j] = in_plane[i][j];
         // Out of plane b = 1, so only the volumetric term remains.
+        const double J =
+          determinant(Fields::tensor<dim>(p + layout.deformation_gradient));
         for (unsigned int d = dim; d < 3; ++d)
           sigma[d][d] = c.lambda * std::log(J) / J;
         return sigma;
       }
 
     private:
+      /// The in-plane stress, inlined into the per-point update.
+      inline SymmetricTensor<2, dim>
+      stress(const double *p, const FieldLayout &layout) const
+      {
+        const Tensor<2, dim> F =
+          Fields::tensor<dim>(p + layout.deformation_gradient);
+        const double J = determinant(F);
+        // J <= 0 is caught by the integrator's kinematic update before this.
+        const SymmetricTensor<2, dim> b = symmetrize(F * transpose(F));
+        return (c.mu / J) * (b - unit_symmetric_tensor<dim>()) +
+               (c.lambda * std::log(J) / J) * unit_symmetric_tensor<dim>();
+      }
+
       const ElasticConstants c;
     };
   } // namespace

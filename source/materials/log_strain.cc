@@ -22,6 +22,43 @@ namespace mpm
     }
 
 
+    void
+    FrictionalStrength::declare_parameters(ParameterHandler &prm,
+                                           const bool        peak)
+    {
+      prm.declare_entry("cohesion",
+                        "1e4",
+                        Patterns::Anything(),
+                        (peak ? "(Peak) cohesion" : "Cohesion") +
+                          std::string(" c in Pa, >= 0."));
+      prm.declare_entry("friction angle",
+                        "30",
+                        Patterns::Anything(),
+                        (peak ? "(Peak) friction" : "Friction") +
+                          std::string(" angle phi in degrees, in [0, 90)."));
+      prm.declare_entry("dilation angle",
+                        "0",
+                        Patterns::Anything(),
+                        (peak ? "(Peak) dilation" : "Dilation") +
+                          std::string(" angle psi in degrees, in [0, "
+                                      "friction angle] (psi = phi: "
+                                      "associated flow)."));
+    }
+
+
+    FrictionalStrength
+    FrictionalStrength::parse(const ParameterHandler &prm,
+                              const std::string      &path)
+    {
+      FrictionalStrength s;
+      s.c   = Parse::bounded_double(prm, path, "cohesion", 0, 1e300);
+      s.phi = parse_angle(prm, path, "friction angle", 0, 90);
+      s.psi =
+        parse_angle(prm, path, "dilation angle", 0, s.phi * 180 / M_PI, false);
+      return s;
+    }
+
+
     double
     parse_tension_cutoff(const ParameterHandler &prm, const std::string &path)
     {

@@ -98,19 +98,7 @@ namespace mpm
       static void
       declare_parameters(ParameterHandler &prm)
       {
-        prm.declare_entry("cohesion",
-                          "1e4",
-                          Patterns::Anything(),
-                          "(Peak) cohesion c in Pa, >= 0.");
-        prm.declare_entry("friction angle",
-                          "30",
-                          Patterns::Anything(),
-                          "(Peak) friction angle phi in degrees, in [0, 90).");
-        prm.declare_entry("dilation angle",
-                          "0",
-                          Patterns::Anything(),
-                          "(Peak) dilation angle psi in degrees, in [0, "
-                          "friction angle] (psi = phi: associated flow).");
+        FrictionalStrength::declare_parameters(prm, true);
         prm.declare_entry("tension cutoff",
                           "apex",
                           Patterns::Anything(),
@@ -146,20 +134,14 @@ namespace mpm
                           "residual values are reached, > 0.");
       }
 
-      struct Strength
-      {
-        double c, phi, psi;
-      };
+      using Strength = FrictionalStrength;
 
       MohrCoulombFlow(ParameterHandler       &prm,
                       const std::string      &path,
                       const ElasticConstants &constants)
         : elasticity(constants)
       {
-        peak.c   = Parse::bounded_double(prm, path, "cohesion", 0, 1e300);
-        peak.phi = parse_angle(prm, path, "friction angle", 0, 90);
-        peak.psi = parse_angle(
-          prm, path, "dilation angle", 0, peak.phi * 180 / M_PI, false);
+        peak      = FrictionalStrength::parse(prm, path);
         cutoff    = parse_tension_cutoff(prm, path);
         softening = prm.get("softening") == "linear";
         residual  = peak;
@@ -182,6 +164,7 @@ namespace mpm
             residual_strain = Parse::bounded_double(
               prm, path, "residual plastic strain", 0, 1e300, true);
           }
+        peak_surface = surface(peak);
       }
 
       Strength
@@ -195,11 +178,33 @@ namespace mpm
                 peak.psi + w * (residual.psi - peak.psi)};
       }
 
-      /// The planes for strength @p m: three Mohr-Coulomb planes of the
-      /// sorted sextant, then the cutoff planes (if any).
-      unsigned int
-      planes(const Strength &m, std::array<Plane, 6> &p) const
+      /// The admissible set for one strength: its planes with their flow
+      /// stresses D n, and the cohesion (the scale of the tolerances).
+      struct Surface
       {
+        std::array<Plane, 6>                 planes;
+        std::array<std::array<double, 3>, 6> Dn;
+        unsigned int                         n;
+        double                               c;
+
+        /// The largest yield function of sorted stresses @p s.
+        double
+        max_yield(const std::array<double, 3> &s) const
+        {
+          double f = -std::numeric_limits<double>::infinity();
+          for (unsigned int i = 0; i < n; ++i)
+            f = std::max(f, dot(planes[i].a, s) - planes[i].k);
+          return f;
+        }
+      };
+
+      /// The surface for strength @p m: three Mohr-Coulomb planes of the
+      /// sorted sextant, then the cutoff planes (if any).
+      Surface
+      surface(const Strength &m) const
+      {
+        Surface      surface;
+        auto        &p  = surface.planes;
         const double sf = std::sin(m.phi), sp = std::sin(m.psi);
         const double k = 2 * m.c * std::cos(m.phi);
         // Main plane (s1, s3); edge planes (s1, s2) and (s2, s3).
@@ -215,45 +220,49 @@ namespace mpm
           std::min(cutoff,
                    sf > 0 ? m.c * std::cos(m.phi) / sf
                           : std::numeric_limits<double>::infinity());
-        if (!std::isfinite(t))
-          return 3;
-        for (unsigned int i = 0; i < 3; ++i)
+        surface.n = 3;
+        if (std::isfinite(t))
           {
-            p[3 + i].a = p[3 + i].n = {{0, 0, 0}};
-            p[3 + i].a[i] = p[3 + i].n[i] = 1;
-            p[3 + i].k                    = t;
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                p[3 + i].a = p[3 + i].n = {{0, 0, 0}};
+                p[3 + i].a[i] = p[3 + i].n[i] = 1;
+                p[3 + i].k                    = t;
+              }
+            surface.n = 6;
           }
-        return 6;
-      }
-
-      /// The largest yield function of sorted stresses @p s.
-      static double
-      max_yield(const std::array<Plane, 6>  &p,
-                const unsigned int           n,
-                const std::array<double, 3> &s)
-      {
-        double f = -std::numeric_limits<double>::infinity();
-        for (unsigned int i = 0; i < n; ++i)
-          f = std::max(f, dot(p[i].a, s) - p[i].k);
-        return f;
-      }
-
-      /// Return sorted trial stresses @p s for fixed strength @p m (see the
-      /// class documentation). False if @p s is admissible.
-      bool
-      return_sorted(std::array<double, 3> &s, const Strength &m) const
-      {
-        std::array<Plane, 6> p;
-        const unsigned int   n = planes(m, p);
-        const double         scale =
-          std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]) + m.c + 1e-300;
-        const double tolerance = 1e-12 * scale;
-        if (max_yield(p, n, s) <= tolerance)
-          return false;
         // The stress change per unit multiplier of each plane, D n.
-        std::array<std::array<double, 3>, 6> Dn;
-        for (unsigned int j = 0; j < n; ++j)
-          Dn[j] = elasticity.stress(p[j].n);
+        for (unsigned int j = 0; j < surface.n; ++j)
+          surface.Dn[j] = elasticity.stress(p[j].n);
+        surface.c = m.c;
+        return surface;
+      }
+
+      /// The surface of a point with plastic strain @p eqps: without
+      /// softening the one made at construction (no trigonometry and no
+      /// copy per point), else made in @p buffer.
+      const Surface &
+      surface_at(const double eqps, Surface &buffer) const
+      {
+        if (!softening)
+          return peak_surface;
+        buffer = surface(strength(eqps));
+        return buffer;
+      }
+
+      /// Return sorted trial stresses @p s to @p surface (see the class
+      /// documentation). False if @p s is admissible.
+      bool
+      return_sorted(std::array<double, 3> &s, const Surface &surface) const
+      {
+        const auto        &p  = surface.planes;
+        const auto        &Dn = surface.Dn;
+        const unsigned int n  = surface.n;
+        const double       scale =
+          std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]) + surface.c + 1e-300;
+        const double tolerance = 1e-12 * scale;
+        if (surface.max_yield(s) <= tolerance)
+          return false;
         // Candidate active sets, one plane before two before three, the
         // main plane first.
         for (unsigned int size = 1; size <= 3; ++size)
@@ -286,15 +295,16 @@ namespace mpm
                 for (unsigned int i = 0; i < 3; ++i)
                   t[i] -= dgamma[r] * Dn[active[r]][i];
               if (t[0] < t[1] - tolerance || t[1] < t[2] - tolerance ||
-                  max_yield(p, n, t) > tolerance)
+                  surface.max_yield(t) > tolerance)
                 continue;
               s = t;
               return true;
             }
-        // Not reached for a consistent set of planes; the apex is the safe
-        // answer.
-        const double apex = p[n - 1].k;
-        s                 = {{apex, apex, apex}};
+        // Not reached: the pyramid (or prism, phi = 0) always has a valid
+        // active set, and with tension planes their corner is one.
+        AssertThrow(false,
+                    ExcMessage("Mohr-Coulomb: no active set found for the "
+                               "return mapping"));
         return true;
       }
 
@@ -303,9 +313,8 @@ namespace mpm
       {
         std::array<double, 3> s = tau;
         std::sort(s.begin(), s.end(), std::greater<double>());
-        std::array<Plane, 6> p;
-        const unsigned int   n = planes(strength(eqps), p);
-        return max_yield(p, n, s);
+        Surface buffer;
+        return surface_at(eqps, buffer).max_yield(s);
       }
 
       bool
@@ -320,7 +329,8 @@ namespace mpm
         const std::array<double, 3> trial = {
           {tau[order[0]], tau[order[1]], tau[order[2]]}};
         std::array<double, 3> s = trial;
-        if (!return_sorted(s, strength(eqps)))
+        Surface               buffer;
+        if (!return_sorted(s, surface_at(eqps, buffer)))
           return false;
         if (softening && eqps < residual_strain)
           s = consistent_softening_return(trial, eqps);
@@ -337,7 +347,7 @@ namespace mpm
       {
         auto returned = [&](const double x) {
           std::array<double, 3> s = trial;
-          return_sorted(s, strength(eqps + x));
+          return_sorted(s, surface(strength(eqps + x)));
           return s;
         };
         auto h = [&](const double x) {
@@ -380,6 +390,7 @@ namespace mpm
 
       const PrincipalElasticity elasticity;
       Strength                  peak, residual;
+      Surface                   peak_surface;
       double                    cutoff;
       bool                      softening;
       double                    residual_strain = 1;

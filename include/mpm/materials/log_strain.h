@@ -129,6 +129,29 @@ namespace mpm
     }
 
 
+    /// 1/2 ln of the principal values of @p s: the principal log strains of
+    /// a left Cauchy-Green tensor.
+    inline std::array<double, 3>
+    half_log(const Spectral &s)
+    {
+      return {{0.5 * std::log(s.values[0]),
+               0.5 * std::log(s.values[1]),
+               0.5 * std::log(s.values[2])}};
+    }
+
+
+    /// The left Cauchy-Green tensor with principal log strains @p eps on
+    /// the directions of @p s: sum exp(2 eps_i) n_i (x) n_i.
+    template <int dim>
+    inline SymmetricTensor<2, 3>
+    stretch_tensor(const std::array<double, 3> &eps, const Spectral &s)
+    {
+      return compose<dim>(
+        {{std::exp(2. * eps[0]), std::exp(2. * eps[1]), std::exp(2. * eps[2])}},
+        s);
+    }
+
+
     /// The step's deformation increment I + dt L, embedded in 3D (the
     /// out-of-plane stretches are 1).
     template <int dim>
@@ -312,11 +335,8 @@ namespace mpm
                 std::to_string(f) + " > 0)");
             p[layout.plastic_strain] = 0.;
           }
-        const auto            eps = elasticity.strain(tau);
-        std::array<double, 3> stretch;
-        for (unsigned int i = 0; i < 3; ++i)
-          stretch[i] = std::exp(2. * eps[i]);
-        Fields::store_embedded<dim>(compose<dim>(stretch, s),
+        Fields::store_embedded<dim>(stretch_tensor<dim>(elasticity.strain(tau),
+                                                        s),
                                     p + layout.elastic_left_cauchy_green);
         Fields::store(Fields::in_plane<dim>(sigma0), p + layout.stress);
       }
@@ -329,11 +349,8 @@ namespace mpm
           Fields::embedded<dim>(be_data),
           increment<dim>(Fields::tensor<dim>(p + layout.velocity_gradient),
                          dt));
-        const Spectral        s = decompose<dim>(trial);
-        std::array<double, 3> eps;
-        for (unsigned int i = 0; i < 3; ++i)
-          eps[i] = 0.5 * std::log(s.values[i]);
-        std::array<double, 3> tau = elasticity.stress(eps);
+        const Spectral        s   = decompose<dim>(trial);
+        std::array<double, 3> tau = elasticity.stress(half_log(s));
         if constexpr (Flow::is_plastic)
           {
             const std::array<double, 3> tau_trial = tau;
@@ -341,11 +358,8 @@ namespace mpm
             if (flow.return_map(tau, eqps))
               {
                 eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
-                eps = elasticity.strain(tau);
-                std::array<double, 3> stretch;
-                for (unsigned int i = 0; i < 3; ++i)
-                  stretch[i] = std::exp(2. * eps[i]);
-                Fields::store_embedded<dim>(compose<dim>(stretch, s), be_data);
+                Fields::store_embedded<dim>(
+                  stretch_tensor<dim>(elasticity.strain(tau), s), be_data);
               }
             else
               Fields::store_embedded<dim>(trial, be_data);
@@ -362,24 +376,16 @@ namespace mpm
       double
       strain_energy(const double *p, const FieldLayout &layout) const override
       {
-        const Spectral s = decompose<dim>(
-          Fields::embedded<dim>(p + layout.elastic_left_cauchy_green));
-        std::array<double, 3> eps;
-        for (unsigned int i = 0; i < 3; ++i)
-          eps[i] = 0.5 * std::log(s.values[i]);
-        return elasticity.energy(eps) * p[layout.mass] / reference_density;
+        return elasticity.energy(half_log(stored_b_e(p, layout))) *
+               p[layout.mass] / reference_density;
       }
 
       SymmetricTensor<2, 3>
       cauchy_stress_3d(const double      *p,
                        const FieldLayout &layout) const override
       {
-        const Spectral s = decompose<dim>(
-          Fields::embedded<dim>(p + layout.elastic_left_cauchy_green));
-        std::array<double, 3> eps;
-        for (unsigned int i = 0; i < 3; ++i)
-          eps[i] = 0.5 * std::log(s.values[i]);
-        std::array<double, 3> tau = elasticity.stress(eps);
+        const Spectral        s   = stored_b_e(p, layout);
+        std::array<double, 3> tau = elasticity.stress(half_log(s));
         const double          J   = jacobian(p, layout, reference_density);
         for (double &t : tau)
           t /= J;
@@ -387,10 +393,33 @@ namespace mpm
       }
 
     private:
+      /// The spectral decomposition of a point's stored b_e.
+      static Spectral
+      stored_b_e(const double *p, const FieldLayout &layout)
+      {
+        return decompose<dim>(
+          Fields::embedded<dim>(p + layout.elastic_left_cauchy_green));
+      }
+
       const ElasticConstants    constants;
       const PrincipalElasticity elasticity;
       const Flow                flow;
       const double              reference_density;
+    };
+
+
+    /// Cohesion, friction and dilation angle (radians) of the frictional
+    /// models, declared and read in one place.
+    struct FrictionalStrength
+    {
+      double c, phi, psi;
+
+      /// @p peak: the documentation calls them the peak values (models
+      /// that soften).
+      static void
+      declare_parameters(ParameterHandler &prm, const bool peak);
+      static FrictionalStrength
+      parse(const ParameterHandler &prm, const std::string &path);
     };
 
 

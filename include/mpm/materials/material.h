@@ -39,12 +39,14 @@ namespace mpm
     virtual void
     request_fields(FieldRequests &requests) const = 0;
 
-    /// Does the stress follow from F alone (hyperelastic, no history)?
-    /// Such a model can start from an initial displacement.
-    virtual bool
+    /// Does the model store F (its stress follows from F, so it can start
+    /// from an initial displacement)? Derived from request_fields.
+    bool
     needs_deformation_gradient() const
     {
-      return false;
+      FieldRequests requests;
+      request_fields(requests);
+      return requests.deformation_gradient;
     }
 
     /// Can the model start from a given stress (initialise_point)?
