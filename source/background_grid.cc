@@ -63,6 +63,18 @@ namespace mpm
 
 
   template <int dim>
+  unsigned int
+  GridParameters<dim>::locate(const Point<dim> &x, Point<dim> &reference) const
+  {
+    Tensor<1, dim> inverse_cell_size;
+    for (unsigned int d = 0; d < dim; ++d)
+      inverse_cell_size[d] = 1. / cell_size()[d];
+    return locate_in_lattice<dim>(
+      x, lower_corner, inverse_cell_size, n_cells, reference);
+  }
+
+
+  template <int dim>
   void
   GridParameters<dim>::parse_parameters(ParameterHandler &prm)
   {
@@ -179,20 +191,8 @@ namespace mpm
   unsigned int
   BackgroundGrid<dim>::locate(const Point<dim> &x, Point<dim> &reference) const
   {
-    unsigned int index  = 0;
-    unsigned int stride = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        const double s = (x[d] - prm.lower_corner[d]) * inv_h[d];
-        // The negated comparison also sends NaN to 'outside'.
-        if (!(s >= 0.) || !(s < prm.n_cells[d]))
-          return invalid;
-        const unsigned int i = static_cast<unsigned int>(s);
-        reference[d]         = s - i;
-        index += i * stride;
-        stride *= prm.n_cells[d];
-      }
-    return index;
+    return locate_in_lattice<dim>(
+      x, prm.lower_corner, inv_h, prm.n_cells, reference);
   }
 
 

@@ -5,6 +5,7 @@
 #include <mpm/parameters.h>
 #include <mpm/simulation.h>
 
+#include <filesystem>
 #include <iostream>
 #include <regex>
 #include <sstream>
@@ -110,6 +111,29 @@ namespace
 
 
   /**
+   * A mesh file named relative to the scene is found next to it, wherever
+   * the program is started from: the scene and its meshes travel together.
+   */
+  void
+  resolve_mesh_files(ParameterHandler  &prm,
+                     const unsigned int n_bodies,
+                     const std::string &scene)
+  {
+    const auto directory = std::filesystem::path(scene).parent_path();
+    prm.enter_subsection("Bodies");
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      {
+        prm.enter_subsection("Body " + std::to_string(b));
+        const std::filesystem::path file = prm.get("mesh file");
+        if (!file.empty() && file.is_relative())
+          prm.set("mesh file", (directory / file).lexically_normal().string());
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  /**
    * Read the scene in two passes: the first learns the number of bodies
    * (and tolerates everything it does not know yet), the second declares
    * that many bodies and reads strictly.
@@ -133,6 +157,7 @@ namespace
     prm.parse_input(c.scene);
     for (const auto &[path, value] : c.overrides)
       apply_override(prm, path, value);
+    resolve_mesh_files(prm, n_bodies, c.scene);
   }
 
 

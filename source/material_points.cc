@@ -4,6 +4,9 @@
 #include <mpm/material_points.h>
 #include <mpm/parameters.h>
 
+#include <algorithm>
+#include <cmath>
+#include <set>
 #include <sstream>
 
 namespace mpm
@@ -19,32 +22,41 @@ namespace mpm
     prm.enter_subsection("Body " + std::to_string(index));
     prm.declare_entry("shape",
                       "box",
-                      Patterns::Selection("box|ball"),
-                      "Shape of the body: box (lower/upper corner) or ball "
-                      "(center/radius; a disk in 2D).");
+                      Patterns::Selection("box|ball|cylinder|polygon|mesh"),
+                      "Shape of the body: box (lower/upper corner), ball "
+                      "(center/radius; a disk in 2D), cylinder (3D: center, "
+                      "axis, length, radius), polygon (2D: vertices) or "
+                      "mesh (the cells of 'mesh file').");
+    Shape<dim>::declare_parameters(prm);
     prm.declare_entry(
-      "lower corner",
-      "0.25",
+      "mesh file",
+      "",
       Patterns::Anything(),
-      "Box: lower corner, one value per dimension or one for all.");
-    prm.declare_entry("upper corner",
-                      "0.75",
+      "Mesh: a file deal.II's GridIn reads (gmsh .msh, .vtk, .inp, .ucd, "
+      "...; format by extension), relative to the scene file's directory. "
+      "Quadrilaterals, hexahedra and simplices. A point sits at each of the "
+      "'particles per cell'^dim Gauss points of a cell, with that point's "
+      "share JxW of the cell's volume.");
+    prm.declare_entry("mesh material ids",
+                      "",
                       Patterns::Anything(),
-                      "Box: upper corner.");
-    prm.declare_entry("center", "0.5", Patterns::Anything(), "Ball: center.");
-    prm.declare_entry("radius",
-                      "0.25",
-                      Patterns::Anything(),
-                      "Ball: radius, > 0.");
-    prm.declare_entry("inner radius",
-                      "0",
-                      Patterns::Anything(),
-                      "Ball: radius of a hole at the centre, in [0, radius): "
-                      "a ring in 2D, a spherical shell in 3D.");
+                      "Mesh: the material ids of the cells this body takes "
+                      "(comma-separated; empty: all). Bodies that read the "
+                      "same file with different ids give each region of "
+                      "the mesh its own material.");
+    prm.declare_entry("clip to grid",
+                      "false",
+                      Patterns::Bool(),
+                      "Keep only the part of the body inside the grid, for "
+                      "a body cut by symmetry planes on grid faces (a "
+                      "quarter cylinder); false: the whole body must lie "
+                      "inside the grid.");
     prm.declare_entry("particles per cell",
                       "2",
                       Patterns::Anything(),
-                      "Material points per cell and direction, in [1, 10].");
+                      "Material points per grid cell and direction, in "
+                      "[1, 10]; for a mesh body, Gauss points per mesh cell "
+                      "and direction.");
     prm.declare_entry("density",
                       "1000",
                       Patterns::Anything(),
@@ -99,42 +111,27 @@ namespace mpm
 
   template <int dim>
   void
-  BodyParameters<dim>::parse_parameters(ParameterHandler  &prm,
-                                        const unsigned int index)
+  BodyParameters<dim>::parse_parameters(ParameterHandler          &prm,
+                                        const unsigned int         index,
+                                        const GridParameters<dim> &grid)
   {
-    name      = "Bodies/Body " + std::to_string(index);
-    constants = Parse::constants(prm);
+    name       = "Bodies/Body " + std::to_string(index);
+    constants  = Parse::constants(prm);
+    this->grid = grid;
     prm.enter_subsection("Bodies");
     prm.enter_subsection("Body " + std::to_string(index));
-    shape = prm.get("shape") == "box" ? Shape::box : Shape::ball;
-    if (shape == Shape::box)
-      {
-        lower_corner = Parse::point<dim>(prm, name, "lower corner");
-        upper_corner = Parse::point<dim>(prm, name, "upper corner");
-        for (unsigned int d = 0; d < dim; ++d)
-          if (!(upper_corner[d] > lower_corner[d]))
-            throw InputError(name + "/upper corner",
-                             prm.get("upper corner"),
-                             "must exceed the lower corner in every direction");
-      }
-    else
-      {
-        center = Parse::point<dim>(prm, name, "center");
-        radius = Parse::bounded_double(prm, name, "radius", 0, 1e300, true);
-        inner_radius = Parse::bounded_double(
-          prm, name, "inner radius", 0, radius, false, true);
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            lower_corner[d] = center[d] - radius;
-            upper_corner[d] = center[d] + radius;
-          }
-      }
     particles_per_cell = static_cast<unsigned int>(
       Parse::bounded_double(prm, name, "particles per cell", 1, 10));
     if (particles_per_cell != prm.get_double("particles per cell"))
       throw InputError(name + "/particles per cell",
                        prm.get("particles per cell"),
                        "must be a whole number in [1, 10]");
+    clip_to_grid = prm.get_bool("clip to grid");
+    shape_name   = prm.get("shape");
+    if (shape_name == "mesh")
+      parse_mesh(prm);
+    else
+      parse_shape(prm);
     density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
     initial_velocity =
       Parse::expression_list(prm, "initial velocity", dim, name);
@@ -172,14 +169,146 @@ namespace mpm
 
 
   template <int dim>
+  void
+  BodyParameters<dim>::parse_shape(const ParameterHandler &prm)
+  {
+    shape           = Shape<dim>::create(prm, name);
+    const auto box  = shape->bounding_box();
+    lower_corner    = box.get_boundary_points().first;
+    upper_corner    = box.get_boundary_points().second;
+    const bool fits = BoundingBox<dim>({grid.lower_corner, grid.upper_corner})
+                        .point_inside(lower_corner) &&
+                      BoundingBox<dim>({grid.lower_corner, grid.upper_corner})
+                        .point_inside(upper_corner);
+    if (!fits && !clip_to_grid)
+      {
+        std::ostringstream s;
+        s << "(" << lower_corner << ") to (" << upper_corner << ")";
+        throw InputError(name + "/" + shape->extent_parameter(),
+                         s.str(),
+                         "the body must lie inside the grid box (or set "
+                         "'clip to grid' to keep the part inside)");
+      }
+  }
+
+
+  template <int dim>
+  void
+  BodyParameters<dim>::parse_mesh(const ParameterHandler &prm)
+  {
+    const std::string file = prm.get("mesh file");
+    if (file.empty())
+      throw InputError(name + "/mesh file",
+                       "",
+                       "shape 'mesh' needs the name of a mesh file");
+    std::set<types::material_id> ids;
+    for (const auto &entry :
+         Utilities::split_string_list(prm.get("mesh material ids"), ','))
+      {
+        const auto bad = [&]() {
+          return InputError(name + "/mesh material ids",
+                            prm.get("mesh material ids"),
+                            "must be a comma-separated list of whole numbers "
+                            "in [0, 255)");
+        };
+        int id;
+        try
+          {
+            id = Utilities::string_to_int(entry);
+          }
+        catch (...)
+          {
+            throw bad();
+          }
+        if (id < 0 || id >= numbers::invalid_material_id)
+          throw bad();
+        ids.insert(static_cast<types::material_id>(id));
+      }
+    const unsigned int n = Parse::bounded_double(
+      prm, name, "particles per cell", 1, 10); // checked again below
+    MeshSeeds<dim> read = seeds_from_mesh<dim>(file, ids, n, name);
+
+    // Sort by grid cell; drop (clip) or refuse the points outside the grid.
+    std::vector<unsigned int> order, cells(read.positions.size());
+    for (unsigned int i = 0; i < read.positions.size(); ++i)
+      {
+        Point<dim> xi;
+        cells[i] = grid.locate(read.positions[i], xi);
+        if (cells[i] != numbers::invalid_unsigned_int)
+          order.push_back(i);
+        else if (!clip_to_grid)
+          {
+            std::ostringstream s;
+            s << "has a point at (" << read.positions[i]
+              << ") outside the grid box: the body must lie inside it (or "
+                 "set 'clip to grid' to keep the part inside)";
+            throw InputError(name + "/mesh file", file, s.str());
+          }
+      }
+    std::stable_sort(order.begin(),
+                     order.end(),
+                     [&](const unsigned int a, const unsigned int b) {
+                       return cells[a] < cells[b];
+                     });
+    auto seeds = std::make_shared<MeshSeeds<dim>>();
+    for (const unsigned int i : order)
+      {
+        seeds->positions.push_back(read.positions[i]);
+        seeds->volumes.push_back(read.volumes[i]);
+        seeds->cells.push_back(cells[i]);
+      }
+    if (seeds->positions.empty())
+      throw InputError(name + "/mesh file",
+                       file,
+                       "no cell of the mesh (with the material ids asked "
+                       "for) lies inside the grid");
+    const BoundingBox<dim> box(seeds->positions);
+    lower_corner = box.get_boundary_points().first;
+    upper_corner = box.get_boundary_points().second;
+    mesh_seeds   = seeds;
+  }
+
+
+  template <int dim>
+  std::pair<unsigned int, unsigned int>
+  BodyParameters<dim>::mesh_seed_range(const Point<dim> &cell_origin) const
+  {
+    Point<dim> middle = cell_origin, xi;
+    for (unsigned int d = 0; d < dim; ++d)
+      middle[d] += 0.5 * grid.cell_size()[d];
+    const unsigned int cell  = grid.locate(middle, xi);
+    const auto        &cells = mesh_seeds->cells;
+    const auto range = std::equal_range(cells.begin(), cells.end(), cell);
+    return {range.first - cells.begin(), range.second - cells.begin()};
+  }
+
+
+  template <int dim>
   template <typename Visitor>
   void
-  BodyParameters<dim>::for_each_seed(const Point<dim>     &cell_origin,
-                                     const Tensor<1, dim> &h,
-                                     const Visitor        &visit) const
+  BodyParameters<dim>::for_each_seed(const Point<dim> &cell_origin,
+                                     const Visitor    &visit) const
   {
-    const unsigned int n = particles_per_cell;
-    for (unsigned int s = 0; s < Utilities::fixed_power<dim>(n); ++s)
+    const Tensor<1, dim> h = grid.cell_size();
+    if (mesh_seeds)
+      {
+        const auto [first, last] = mesh_seed_range(cell_origin);
+        for (unsigned int i = first; i < last; ++i)
+          {
+            const Point<dim> &x = mesh_seeds->positions[i];
+            Point<dim>        xi;
+            for (unsigned int d = 0; d < dim; ++d)
+              xi[d] = std::clamp((x[d] - cell_origin[d]) / h[d], 0., 1.);
+            visit(x, xi, mesh_seeds->volumes[i]);
+          }
+        return;
+      }
+    const unsigned int n      = particles_per_cell;
+    const unsigned int n_sub  = Utilities::fixed_power<dim>(n);
+    double             volume = 1. / n_sub;
+    for (unsigned int d = 0; d < dim; ++d)
+      volume *= h[d];
+    for (unsigned int s = 0; s < n_sub; ++s)
       {
         // Points at the centres of n^dim sub-cells: interior, never on a
         // face, where deal.II 9.4's in-cell test can lose them.
@@ -193,21 +322,26 @@ namespace mpm
         Point<dim> x = cell_origin;
         for (unsigned int d = 0; d < dim; ++d)
           x[d] += xi[d] * h[d];
-        if (contains(x))
-          visit(x, xi);
+        if (shape->contains(x))
+          visit(x, xi, volume);
       }
   }
 
 
   template <int dim>
   unsigned int
-  BodyParameters<dim>::count_seeds(const Point<dim>     &cell_origin,
-                                   const Tensor<1, dim> &h) const
+  BodyParameters<dim>::count_seeds(const Point<dim> &cell_origin) const
   {
+    if (mesh_seeds)
+      {
+        const auto [first, last] = mesh_seed_range(cell_origin);
+        return last - first;
+      }
     unsigned int n = 0;
-    for_each_seed(cell_origin, h, [&n](const Point<dim> &, const Point<dim> &) {
-      ++n;
-    });
+    for_each_seed(cell_origin,
+                  [&n](const Point<dim> &, const Point<dim> &, const double) {
+                    ++n;
+                  });
     return n;
   }
 
@@ -229,23 +363,6 @@ namespace mpm
 
 
   template <int dim>
-  bool
-  BodyParameters<dim>::contains(const Point<dim> &x) const
-  {
-    if (shape == Shape::ball)
-      {
-        const double r2 = x.distance_square(center);
-        return r2 < radius * radius && r2 >= inner_radius * inner_radius;
-      }
-    for (unsigned int d = 0; d < dim; ++d)
-      if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
-        return false;
-    return true;
-  }
-
-
-
-  template <int dim>
   MaterialPoints<dim>::MaterialPoints(
     const BackgroundGrid<dim>              &grid,
     const std::vector<BodyParameters<dim>> &bodies,
@@ -258,17 +375,6 @@ namespace mpm
     , particles(grid.triangulation(), grid.mapping(), fields.n_properties)
     , minimum_mass(0)
   {
-    for (const auto &b : body_list)
-      if (!grid.contains(b.lower_corner, b.upper_corner))
-        {
-          std::ostringstream s;
-          s << "(" << b.lower_corner << ") to (" << b.upper_corner << ")";
-          throw InputError(b.name + (b.shape == BodyParameters<dim>::Shape::box
-                                       ? "/upper corner"
-                                       : "/radius"),
-                           s.str(),
-                           "the body must lie inside the grid box");
-        }
   }
 
 
@@ -292,9 +398,6 @@ namespace mpm
     std::vector<std::pair<unsigned int, unsigned int>> where; // (cell, body)
     std::vector<std::vector<double>>                   props;
     std::vector<Point<dim>>                            references;
-    double                                             cell_volume = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      cell_volume *= grid.cell_size()[d];
 
     std::vector<types::particle_index> count(body_list.size(), 0);
     minimum_mass = std::numeric_limits<double>::max();
@@ -325,17 +428,15 @@ namespace mpm
           stress = Parse::vector_function<dim>(body.initial_stress,
                                                body.constants,
                                                body.name + "/initial stress");
-        const unsigned int n      = body.particles_per_cell;
-        const unsigned int n_sub  = Utilities::fixed_power<dim>(n);
-        const double       volume = cell_volume / n_sub;
-        const double       mass   = body.density * volume;
-        minimum_mass              = std::min(minimum_mass, mass);
         for (const auto &cell : grid.triangulation().active_cell_iterators())
           if (cell->is_locally_owned())
             body.for_each_seed(
               cell->vertex(0),
-              grid.cell_size(),
-              [&](const Point<dim> &x, const Point<dim> &xi) {
+              [&](const Point<dim> &x,
+                  const Point<dim> &xi,
+                  const double      volume) {
+                const double mass = body.density * volume;
+                minimum_mass      = std::min(minimum_mass, mass);
                 std::vector<double> p(l.n_properties, 0.);
                 p[l.mass]   = mass;
                 p[l.volume] = volume;

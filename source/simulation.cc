@@ -49,7 +49,7 @@ namespace mpm
     prm.leave_subsection();
     body_parameters.resize(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
-      body_parameters[b].parse_parameters(prm, b);
+      body_parameters[b].parse_parameters(prm, b, grid_parameters);
     velocity_region_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     verification_parameters.parse_parameters(prm);
@@ -68,12 +68,11 @@ namespace mpm
                                           TimerOutput::never,
                                           TimerOutput::wall_times);
     // Balance the ranks by the material points each cell will hold.
-    const Tensor<1, dim> h = grid_parameters.cell_size();
-    grid                   = std::make_unique<BackgroundGrid<dim>>(
+    grid = std::make_unique<BackgroundGrid<dim>>(
       grid_parameters, comm, [&](const Point<dim> &cell_origin) {
         unsigned int n = 0;
         for (const auto &body : body_parameters)
-          n += body.count_seeds(cell_origin, h);
+          n += body.count_seeds(cell_origin);
         return n;
       });
     FieldRequests fields;

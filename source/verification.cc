@@ -106,7 +106,7 @@ namespace mpm
                                       "Verification/exact displacement");
       }
     else if (prm.exact != VerificationParameters::Exact::none &&
-             body.shape != BodyParameters<dim>::Shape::box)
+             body.shape_name != "box")
       throw InputError("Verification/exact solution",
                        "",
                        "needs body 0 to be a box");

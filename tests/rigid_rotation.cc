@@ -73,7 +73,7 @@ end
   std::vector<mpm::BodyParameters<2>> bodies(1);
   grid_parameters.parse_parameters(prm);
   integrator_parameters.parse_parameters(prm);
-  bodies[0].parse_parameters(prm, 0);
+  bodies[0].parse_parameters(prm, 0, grid_parameters);
 
   mpm::BackgroundGrid<2> grid(grid_parameters, comm);
   mpm::FieldRequests     fields;

@@ -236,3 +236,16 @@ mpm_test(bad_velocity_region PRM ../benchmarks/plasticity/strip_footing.prm EXIT
 mpm_test(bad_tension_cutoff PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
   ARGS -s "Bodies/Body 0/material=Drucker-Prager" -s "Bodies/Body 0/Drucker-Prager/tension cutoff=-5"
   ERROR "parameter 'Bodies/Body 0/Drucker-Prager/tension cutoff' = '-5': must be >= 0")
+
+# 9. Bodies from a mesh file and the closed-form shapes (the shapes
+#    themselves, their errors, and mesh seeds against exact cell areas:
+#    body_shapes).
+#    A reviewed history starting with the exact mass; 2 ranks reproduce it.
+mpm_test(mesh_bodies)
+mpm_test(mesh_bodies_mpi2 PRM mesh_bodies.prm NP 2 REFERENCE mesh_bodies.output RELTOL 1e-7)
+mpm_test(bad_mesh_file PRM mesh_bodies.prm EXIT 1
+  ARGS -s "Bodies/Body 1/mesh file=meshes/missing.msh"
+  ERROR "parameter 'Bodies/Body 1/mesh file' = '.*tests/meshes/missing.msh': cannot be opened for reading")
+mpm_test(bad_mesh_material_id PRM mesh_bodies.prm EXIT 1
+  ARGS -s "Bodies/Body 0/mesh material ids=1, x"
+  ERROR "parameter 'Bodies/Body 0/mesh material ids' = '1, x': must be a comma-separated list of whole numbers")

@@ -45,7 +45,39 @@ namespace mpm
     /// Size of a cell in each direction.
     Tensor<1, dim>
     cell_size() const;
+
+    /// Lexicographic index of the cell that holds @p x (and @p x's
+    /// coordinates in it), or numbers::invalid_unsigned_int outside.
+    unsigned int
+    locate(const Point<dim> &x, Point<dim> &reference) const;
   };
+
+
+  /// The formula behind GridParameters::locate() and BackgroundGrid::locate(),
+  /// with the inverse cell size given (the hot path caches it).
+  template <int dim>
+  inline unsigned int
+  locate_in_lattice(const Point<dim>                    &x,
+                    const Point<dim>                    &lower_corner,
+                    const Tensor<1, dim>                &inverse_cell_size,
+                    const std::array<unsigned int, dim> &n_cells,
+                    Point<dim>                          &reference)
+  {
+    unsigned int index  = 0;
+    unsigned int stride = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double s = (x[d] - lower_corner[d]) * inverse_cell_size[d];
+        // The negated comparison also sends NaN to 'outside'.
+        if (!(s >= 0.) || !(s < n_cells[d]))
+          return numbers::invalid_unsigned_int;
+        const unsigned int i = static_cast<unsigned int>(s);
+        reference[d]         = s - i;
+        index += i * stride;
+        stride *= n_cells[d];
+      }
+    return index;
+  }
 
 
   /**

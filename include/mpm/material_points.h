@@ -7,6 +7,8 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <mpm/background_grid.h>
+#include <mpm/bodies/mesh_seeds.h>
+#include <mpm/bodies/shape.h>
 #include <mpm/field_layout.h>
 #include <mpm/materials/material.h>
 
@@ -19,28 +21,37 @@ namespace mpm
 {
   using namespace dealii;
 
-  /// One body of the scene: a shape filled with material points.
+  /**
+   * One body of the scene: a shape filled with material points on a
+   * lattice of n^dim points per grid cell, or the cells of a mesh file with
+   * a point at each Gauss point.
+   */
   template <int dim>
   struct BodyParameters
   {
     /// Declares subsection "Body <index>" of section "Bodies".
     static void
     declare_parameters(ParameterHandler &prm, const unsigned int index);
-    /// Parses that subsection and creates the body's material.
+    /// Parses that subsection, fills a mesh body's seeds and creates the
+    /// body's material; @p grid places the body in the background grid.
     void
-    parse_parameters(ParameterHandler &prm, const unsigned int index);
+    parse_parameters(ParameterHandler          &prm,
+                     const unsigned int         index,
+                     const GridParameters<dim> &grid);
 
-    std::string name; ///< "Bodies/Body 0", for messages
-    enum class Shape
-    {
-      box,
-      ball
-    } shape;
-    Point<dim>               lower_corner, upper_corner; ///< box
-    Point<dim>               center;                     ///< ball
-    double                   radius;                     ///< ball
-    double                   inner_radius = 0;           ///< ball: hole
-    unsigned int             particles_per_cell;         ///< per direction
+    std::string name;       ///< "Bodies/Body 0", for messages
+    std::string shape_name; ///< the scene's 'shape'
+    /// The closed-form shape; null for a body read from a mesh file.
+    std::shared_ptr<const Shape<dim>> shape;
+    /// A mesh body's points, sorted by grid cell; null for a shape.
+    std::shared_ptr<const MeshSeeds<dim>> mesh_seeds;
+    /// Keep only the part inside the grid (a body cut by symmetry planes);
+    /// otherwise the whole body must lie inside.
+    bool clip_to_grid;
+    /// A box around the body (the box itself for shape 'box').
+    Point<dim>               lower_corner, upper_corner;
+    GridParameters<dim>      grid;
+    unsigned int             particles_per_cell; ///< per direction
     double                   density;
     std::vector<std::string> initial_velocity; ///< one expression per component
     /// Displacement at t = 0 from the reference shape; "0" if none.
@@ -56,9 +67,6 @@ namespace mpm
     std::string                    material_name;
     std::shared_ptr<Material<dim>> material;
 
-    bool
-    contains(const Point<dim> &x) const;
-
     /// Does the body start displaced from its shape?
     bool
     is_displaced() const;
@@ -67,17 +75,25 @@ namespace mpm
     bool
     is_prestressed() const;
 
-    /// Call visit(x, xi) for each point this body seeds in the cell with
-    /// lower corner @p cell_origin and size @p h (x real, xi reference).
+    /// Call visit(x, xi, volume) for each point this body seeds in the grid
+    /// cell with lower corner @p cell_origin (x real, xi reference).
     template <typename Visitor>
     void
-    for_each_seed(const Point<dim>     &cell_origin,
-                  const Tensor<1, dim> &h,
-                  const Visitor        &visit) const;
+    for_each_seed(const Point<dim> &cell_origin, const Visitor &visit) const;
 
     /// How many points this body seeds in that cell (for load balance).
     unsigned int
-    count_seeds(const Point<dim> &cell_origin, const Tensor<1, dim> &h) const;
+    count_seeds(const Point<dim> &cell_origin) const;
+
+  private:
+    void
+    parse_mesh(const ParameterHandler &prm);
+    void
+    parse_shape(const ParameterHandler &prm);
+    /// The first and one-past-last mesh seed in the grid cell at
+    /// @p cell_origin.
+    std::pair<unsigned int, unsigned int>
+    mesh_seed_range(const Point<dim> &cell_origin) const;
   };
 
 

@@ -1,0 +1,44 @@
+#ifndef mpm_bodies_mesh_seeds_h
+#define mpm_bodies_mesh_seeds_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/types.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /// Material points of a body read from a mesh: where, and how much volume.
+  template <int dim>
+  struct MeshSeeds
+  {
+    std::vector<Point<dim>> positions;
+    std::vector<double>     volumes;
+    /// The background-grid cell of each seed; the body sorts the seeds by
+    /// it, so that a cell finds its seeds by binary search.
+    std::vector<unsigned int> cells;
+  };
+
+  /**
+   * Read the mesh @p file (any format deal.II's GridIn knows, chosen by the
+   * file's extension: gmsh .msh, .vtk, .inp, .ucd, ...) and put a point at
+   * each of the n^dim Gauss points of every cell whose material id is in
+   * @p material_ids (all cells if empty), with the volume JxW of that
+   * point. Gauss points lie inside their cells and integrate the cell's
+   * volume exactly, so the body's mass is right for any cell shape.
+   * @p path names the body's parameters in the InputError a missing or
+   * unreadable file, or a material id no cell has, gives.
+   */
+  template <int dim>
+  MeshSeeds<dim>
+  seeds_from_mesh(const std::string                  &file,
+                  const std::set<types::material_id> &material_ids,
+                  const unsigned int                  n,
+                  const std::string                  &path);
+} // namespace mpm
+
+#endif

@@ -1,0 +1,167 @@
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping.h>
+
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/tria.h>
+
+#include <mpm/bodies/mesh_seeds.h>
+#include <mpm/parameters.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+namespace mpm
+{
+  namespace
+  {
+    /// The gist of a deal.II exception: its "Additional information" line.
+    std::string
+    gist(const std::string &what)
+    {
+      const auto i = what.find("Additional information:");
+      if (i == std::string::npos)
+        return Utilities::trim(what.substr(0, what.find('\n')));
+      std::string rest = what.substr(i + 23);
+      rest             = Utilities::trim(rest.substr(0, rest.find("\n\n")));
+      for (auto &c : rest)
+        if (c == '\n')
+          c = ' ';
+      return rest;
+    }
+
+
+    template <int dim>
+    void
+    read_mesh(const std::string  &file,
+              const std::string  &path,
+              Triangulation<dim> &mesh)
+    {
+      const std::string parameter = path + "/mesh file";
+      std::string       extension = std::filesystem::path(file).extension();
+      if (!extension.empty())
+        extension.erase(0, 1);
+      typename GridIn<dim>::Format format;
+      try
+        {
+          format = GridIn<dim>::parse_format(extension);
+        }
+      catch (...)
+        {
+          throw InputError(parameter,
+                           file,
+                           "the extension must name a format deal.II's "
+                           "GridIn reads: " +
+                             GridIn<dim>::get_format_names());
+        }
+      std::ifstream in(file);
+      if (!in)
+        throw InputError(parameter, file, "cannot be opened for reading");
+      GridIn<dim> reader;
+      reader.attach_triangulation(mesh);
+      try
+        {
+          reader.read(in, format);
+        }
+      catch (const std::exception &e)
+        {
+          throw InputError(parameter,
+                           file,
+                           "is not a valid ." + extension +
+                             " mesh of dimension " + std::to_string(dim) +
+                             ": " + gist(e.what()));
+        }
+    }
+
+
+    /// FEValues for the Gauss points of one kind of cell (quadrilaterals,
+    /// triangles, ...): a mesh may mix them.
+    template <int dim>
+    struct CellKind
+    {
+      CellKind(const ReferenceCell &kind, const unsigned int n)
+        : element(kind)
+        , values(kind.template get_default_linear_mapping<dim>(),
+                 element,
+                 kind.template get_gauss_type_quadrature<dim>(n),
+                 update_quadrature_points | update_JxW_values)
+      {
+      }
+      FE_Nothing<dim> element;
+      FEValues<dim>   values;
+    };
+  } // namespace
+
+
+  template <int dim>
+  MeshSeeds<dim>
+  seeds_from_mesh(const std::string                  &file,
+                  const std::set<types::material_id> &material_ids,
+                  const unsigned int                  n,
+                  const std::string                  &path)
+  {
+    Triangulation<dim> mesh;
+    read_mesh(file, path, mesh);
+
+    MeshSeeds<dim>                                          seeds;
+    std::map<ReferenceCell, std::unique_ptr<CellKind<dim>>> kinds;
+    std::set<types::material_id>                            seen;
+    for (const auto &cell : mesh.active_cell_iterators())
+      {
+        seen.insert(cell->material_id());
+        if (!material_ids.empty() &&
+            material_ids.count(cell->material_id()) == 0)
+          continue;
+        auto &kind = kinds[cell->reference_cell()];
+        if (!kind)
+          kind = std::make_unique<CellKind<dim>>(cell->reference_cell(), n);
+        kind->values.reinit(cell);
+        for (unsigned int q = 0; q < kind->values.n_quadrature_points; ++q)
+          {
+            const double volume = kind->values.JxW(q);
+            if (!(volume > 0))
+              throw InputError(path + "/mesh file",
+                               file,
+                               "cell " + std::to_string(cell->index()) +
+                                 " is inverted or degenerate (Jacobian "
+                                 "determinant <= 0 at a Gauss point)");
+            seeds.positions.push_back(kind->values.quadrature_point(q));
+            seeds.volumes.push_back(volume);
+          }
+      }
+    for (const auto id : material_ids)
+      if (seen.count(id) == 0)
+        {
+          std::string present;
+          for (const auto s : seen)
+            present += (present.empty() ? "" : ", ") + std::to_string(s);
+          throw InputError(path + "/mesh material ids",
+                           std::to_string(id),
+                           "no cell of '" + file +
+                             "' has this material id; it has: " + present);
+        }
+    return seeds;
+  }
+
+
+  template MeshSeeds<1>
+  seeds_from_mesh<1>(const std::string &,
+                     const std::set<types::material_id> &,
+                     const unsigned int,
+                     const std::string &);
+  template MeshSeeds<2>
+  seeds_from_mesh<2>(const std::string &,
+                     const std::set<types::material_id> &,
+                     const unsigned int,
+                     const std::string &);
+  template MeshSeeds<3>
+  seeds_from_mesh<3>(const std::string &,
+                     const std::set<types::material_id> &,
+                     const unsigned int,
+                     const std::string &);
+} // namespace mpm
