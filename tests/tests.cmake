@@ -249,3 +249,6 @@ mpm_test(bad_mesh_file PRM mesh_bodies.prm EXIT 1
 mpm_test(bad_mesh_material_id PRM mesh_bodies.prm EXIT 1
   ARGS -s "Bodies/Body 0/mesh material ids=1, x"
   ERROR "parameter 'Bodies/Body 0/mesh material ids' = '1, x': must be a comma-separated list of whole numbers")
+mpm_test(bad_mesh_gauss_order PRM mesh_bodies.prm EXIT 1
+  ARGS -s "Bodies/Body 1/particles per cell=5"
+  ERROR "parameter 'Bodies/Body 1/particles per cell' = '5': deal.II has no Gauss rule of this order on the mesh's Tri cells")

@@ -119,7 +119,18 @@ namespace mpm
           continue;
         auto &kind = kinds[cell->reference_cell()];
         if (!kind)
-          kind = std::make_unique<CellKind<dim>>(cell->reference_cell(), n);
+          {
+            kind = std::make_unique<CellKind<dim>>(cell->reference_cell(), n);
+            // deal.II has Gauss rules on simplices for a few orders only,
+            // and returns an empty rule beyond them.
+            if (kind->values.n_quadrature_points == 0)
+              throw InputError(path + "/particles per cell",
+                               std::to_string(n),
+                               "deal.II has no Gauss rule of this order on "
+                               "the mesh's " +
+                                 cell->reference_cell().to_string() +
+                                 " cells; use fewer");
+          }
         kind->values.reinit(cell);
         for (unsigned int q = 0; q < kind->values.n_quadrature_points; ++q)
           {
