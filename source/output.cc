@@ -44,6 +44,14 @@ namespace mpm
       Patterns::Bool(),
       "true or false: also write nodal mass and velocity on the "
       "grid (VTU, grid.pvd).");
+    prm.declare_entry(
+      "body extents",
+      "false",
+      Patterns::Bool(),
+      "true or false: add to statistics.csv the box around each body's "
+      "material points, columns body<b>_<axis>_min and _max (the points' "
+      "positions: the body's edge lies about half a point spacing "
+      "further out). For runout, length and spread.");
     prm.declare_entry("progress interval",
                       "2",
                       Patterns::Anything(),
@@ -59,9 +67,10 @@ namespace mpm
     directory = prm.get("directory");
     if (directory.empty())
       throw InputError("Output/directory", "", "must not be empty");
-    interval    = Parse::bounded_double(prm, "Output", "interval", 0, 1e300);
-    fields      = Utilities::split_string_list(prm.get("fields"), ',');
-    grid_output = prm.get_bool("grid output");
+    interval     = Parse::bounded_double(prm, "Output", "interval", 0, 1e300);
+    fields       = Utilities::split_string_list(prm.get("fields"), ',');
+    grid_output  = prm.get_bool("grid output");
+    body_extents = prm.get_bool("body extents");
     progress_interval =
       Parse::bounded_double(prm, "Output", "progress interval", 0, 1e300);
     prm.leave_subsection();

@@ -99,6 +99,12 @@ namespace mpm
     std::vector<std::string> columns = verification->columns();
     for (const auto &c : velocity_region->columns())
       columns.push_back(c);
+    if (output_parameters.body_extents)
+      for (unsigned int b = 0; b < body_parameters.size(); ++b)
+        for (unsigned int d = 0; d < dim; ++d)
+          for (const std::string end : {"_min", "_max"})
+            columns.push_back("body" + std::to_string(b) + "_" + "xyz"[d] +
+                              end);
     output = std::make_unique<Output<dim>>(output_parameters,
                                            *grid,
                                            *points,
@@ -165,6 +171,13 @@ namespace mpm
     for (const double f :
          velocity_region->mean_force_since_last_call(integrator->time(), comm))
       extra.push_back(f);
+    if (output_parameters.body_extents)
+      for (const auto &[lower, upper] : points->body_extents())
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            extra.push_back(lower[d]);
+            extra.push_back(upper[d]);
+          }
     output->write(s, extra, wall_seconds);
     last_output_time = integrator->time();
   }

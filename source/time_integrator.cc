@@ -230,6 +230,8 @@ namespace mpm
     for (const auto &body : points.bodies())
       {
         wave_modulus_of_body.push_back(body.material->p_wave_modulus());
+        fixed_inverse_density_of_body.push_back(
+          body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
         body_forces.push_back(body.body_force.get());
         has_body_forces = has_body_forces || body.body_force;
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
@@ -382,11 +384,14 @@ namespace mpm
         const double                 *q = p.get_properties().data();
         const Tensor<1, dim>          v = Fields::vector<dim>(q + l.velocity);
         const SymmetricTensor<2, dim> s = Fields::symmetric<dim>(q + l.stress);
+        const unsigned int            b = q[l.body];
         const double                  c2 =
-          wave_modulus_of_body[q[l.body]] * q[l.volume] / q[l.mass];
+          wave_modulus_of_body[b] * (fixed_inverse_density_of_body[b] > 0
+                                       ? fixed_inverse_density_of_body[b]
+                                       : q[l.volume] / q[l.mass]);
         const double v2 = v.norm_square();
         // One test catches NaN/inf in velocity, stress and volume.
-        if (!std::isfinite(c2 + v2 + (s * s)) && failure.empty())
+        if (!std::isfinite(c2 + v2 + (s * s) + q[l.volume]) && failure.empty())
           {
             std::ostringstream msg;
             msg << "step " << n_steps << ", t = " << t << ": material point "

@@ -32,7 +32,9 @@ namespace mpm
     double                   interval; ///< simulated time; 0 = every step
     std::vector<std::string> fields;
     bool                     grid_output;
-    double                   progress_interval; ///< wall seconds
+    /// Columns with the box around each body's points (runout, length).
+    bool   body_extents;
+    double progress_interval; ///< wall seconds
   };
 
 

@@ -214,6 +214,8 @@ namespace mpm
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
     std::vector<double>                        wave_modulus_of_body;
+    /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
+    std::vector<double> fixed_inverse_density_of_body;
     /// uGIMP/cpGIMP: initial domain half-width of each body's points, in
     /// cells: half of 1 / (points per cell).
     std::vector<double>                initial_half_width_of_body;

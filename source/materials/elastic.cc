@@ -174,6 +174,12 @@ namespace mpm
         return c.lambda + 2. * c.mu;
       }
 
+      bool
+      stiffness_is_kirchhoff() const override
+      {
+        return true;
+      }
+
       inline void
       update_point(double *p, const FieldLayout &layout, const double) const
       {

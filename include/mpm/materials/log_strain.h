@@ -316,6 +316,12 @@ namespace mpm
         return constants.lambda + 2. * constants.mu;
       }
 
+      bool
+      stiffness_is_kirchhoff() const override
+      {
+        return true;
+      }
+
       /// The elastic strain that carries @p sigma0 (at the point's J).
       void
       initialise_point(double                      *p,

@@ -61,6 +61,21 @@ namespace mpm
     p_wave_modulus() const = 0;
 
     /**
+     * Does the stiffness act on the Kirchhoff stress (hyperelastic and
+     * log-strain models: tau = J sigma)? Then the Cauchy stiffness is M / J
+     * and the wave speed sqrt(M / rho0) at any J. Otherwise (a Cauchy stress
+     * rate, the hypoelastic linear model) it is sqrt(M / rho) with the
+     * current density rho = rho0 / J. The difference matters where points
+     * spread apart (J >> 1: granular flow), where the hypoelastic estimate
+     * would shrink the time step without need, and under strong compression.
+     */
+    virtual bool
+    stiffness_is_kirchhoff() const
+    {
+      return false;
+    }
+
+    /**
      * Give a new point its initial state: the stress @p sigma0 (a full 3D
      * tensor; in 2D and 1D the out-of-plane normal components count) and
      * whatever state produces it. Throws a std::domain_error with the

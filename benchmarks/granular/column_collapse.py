@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""Granular column collapse: normalised runout against the experimental laws.
+
+Runs benchmarks/granular/column_collapse.prm for each aspect ratio
+a = H0 / L0 and prints one CSV row per run: a, cells across the column's
+width, the normalised runout (L_inf - L0) / L0, the laws' values, whether
+it lies inside their envelope, the kinetic energy left at the end (over the
+initial potential energy: the deposit must be at rest), and the cost.
+
+The front L_inf is the largest x of a material point plus half a point
+spacing (the body's edge). The laws, for quasi-2D columns on a horizontal
+plane (as the issue quotes them; see README.md for their provenance):
+  Lube et al. 2005:        1.2 a for a < 1.8,   1.9 a^(2/3) above;
+  Lajeunesse et al. 2005:  1.2 a for a < 3,     1.9 a^(2/3) above (glass).
+The envelope at a is [min, max] of the two laws, widened by the scatter of
+the experiments (--scatter, 20 % by default).
+
+  column_collapse.py --exe build/dealii-mpm                    the sweep
+  column_collapse.py --exe ... --aspect 1 --cells 8 --check    a ctest
+"""
+import argparse, csv, os, subprocess, sys, tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+L0 = 0.2
+
+
+def laws(a):
+    lube = 1.2 * a if a < 1.8 else 1.9 * a ** (2 / 3)
+    lajeunesse = 1.2 * a if a < 3 else 1.9 * a ** (2 / 3)
+    return lube, lajeunesse
+
+
+def run(exe, a, n, end_time, extra):
+    h = L0 / n
+    # Room for the runout (a safe 1.5x the larger law) and the column.
+    width = L0 * (1 + 1.5 * max(laws(a))) + 2 * h
+    height = a * L0 + 2 * h
+    nx, ny = round(width / h), round(height / h)
+    with tempfile.TemporaryDirectory() as out:
+        args = [exe, os.path.join(HERE, "column_collapse.prm"),
+                "-s", "Simulation/constants=a=%g, L0=%g, rho=1500, g=9.81, "
+                      "K0=0.5" % (a, L0),
+                "-s", "Simulation/end time=%g" % end_time,
+                "-s", "Grid/upper corner=%.17g, %.17g" % (nx * h, ny * h),
+                "-s", "Grid/cells=%d, %d" % (nx, ny),
+                "-s", "Bodies/Body 0/upper corner=%.17g, %.17g" % (L0, a * L0),
+                "-s", "Output/directory=" + out,
+                "-s", "Output/fields=plastic strain",
+                "-s", "Output/interval=%g" % (end_time / 20),
+                "-s", "Output/progress interval=1e9"] + extra
+        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
+        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
+        timing = {r["phase"]: r for r in
+                  csv.DictReader(open(os.path.join(out, "timing.csv")))}
+    spacing = h / 2  # 2 points per cell and direction
+    front = float(rows[-1]["body0_x_max"]) + spacing / 2
+    potential = float(rows[0]["gravitational_energy"]) - \
+        float(rows[-1]["gravitational_energy"])
+    rest = float(rows[-1]["kinetic_energy"]) / max(potential, 1e-300)
+    return (front - L0) / L0, rest, float(rows[-1]["wall_seconds"]), \
+        float(timing["steps"]["ns_per_particle_step"])
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--exe", required=True)
+    parser.add_argument("--aspect", default="0.5,1,2,4",
+                        help="aspect ratios a = H0/L0, comma-separated")
+    parser.add_argument("--cells", default="8,16",
+                        help="cells across the column width, comma-separated")
+    parser.add_argument("--scatter", type=float, default=0.2)
+    parser.add_argument("--check", action="store_true",
+                        help="fail unless every runout lies in the envelope "
+                             "and every deposit is at rest")
+    parser.add_argument("-s", action="append", default=[],
+                        help="a parameter override passed on to dealii-mpm")
+    a = parser.parse_args()
+    extra = sum([["-s", s] for s in a.s], [])
+
+    print("aspect,cells_per_width,runout,lube,lajeunesse,envelope_low,"
+          "envelope_high,inside,kinetic_over_released,wall_seconds,"
+          "ns_per_particle_step")
+    ok = True
+    for aspect in [float(x) for x in a.aspect.split(",")]:
+        # Collapse and spreading last a few sqrt(H0 / g); 8 of them, at
+        # least 0.8 s, leave the deposit at rest.
+        end_time = max(0.8, 8 * (aspect * L0 / 9.81) ** 0.5)
+        for n in [int(x) for x in a.cells.split(",")]:
+            runout, rest, wall, ns = run(a.exe, aspect, n, end_time, extra)
+            lube, lajeunesse = laws(aspect)
+            low = (1 - a.scatter) * min(lube, lajeunesse)
+            high = (1 + a.scatter) * max(lube, lajeunesse)
+            inside = low <= runout <= high
+            at_rest = rest < 1e-3
+            print("%g,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%d,%.2e,%.2f,%.1f" %
+                  (aspect, n, runout, lube, lajeunesse, low, high, inside,
+                   rest, wall, ns), flush=True)
+            ok = ok and inside and at_rest
+    if a.check and not ok:
+        print("FAILED: a runout lies outside the envelope of the laws or a "
+              "deposit is still moving")
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
