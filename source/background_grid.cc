@@ -42,11 +42,20 @@ namespace mpm
     for (unsigned int f = 0; f < 6; ++f)
       prm.declare_entry(std::string("boundary ") + face_names[f],
                         "slip",
-                        Patterns::Selection("free|fixed|slip"),
+                        Patterns::Selection("free|fixed|slip|friction"),
                         "Velocity condition on this face of the box: free, "
-                        "fixed (all components zero) or slip (normal "
-                        "component zero). Faces beyond the dimension are "
+                        "fixed (all components zero), slip (normal "
+                        "component zero) or friction (Coulomb contact with "
+                        "'friction coefficient': no flow into the face, "
+                        "free separation, the tangential velocity reduced "
+                        "by at most mu times the normal velocity removed, "
+                        "never reversed). Faces beyond the dimension are "
                         "ignored.");
+    prm.declare_entry("friction coefficient",
+                      "0.5",
+                      Patterns::Anything(),
+                      "Coulomb coefficient mu >= 0 of the faces of type "
+                      "friction (tan of the basal friction angle).");
     prm.leave_subsection();
   }
 
@@ -100,8 +109,11 @@ namespace mpm
         const std::string b = prm.get(std::string("boundary ") + face_names[f]);
         boundary[f]         = (b == "free"    ? BoundaryType::free
                                : b == "fixed" ? BoundaryType::fixed
-                                              : BoundaryType::slip);
+                               : b == "slip"  ? BoundaryType::slip
+                                              : BoundaryType::friction);
       }
+    friction_coefficient =
+      Parse::bounded_double(prm, "Grid", "friction coefficient", 0, 1e300);
     prm.leave_subsection();
   }
 
@@ -264,6 +276,7 @@ namespace mpm
   BackgroundGrid<dim>::build_node_constraints()
   {
     std::vector<unsigned int>            mask(n_owned_nodes, 0u);
+    std::vector<unsigned int>            friction_faces(n_owned_nodes, 0u);
     std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -272,6 +285,15 @@ namespace mpm
             {
               const unsigned int id   = cell->face(f)->boundary_id();
               unsigned int       bits = 0;
+              if (prm.boundary[id] == BoundaryType::friction)
+                {
+                  cell->face(f)->get_dof_indices(face_dofs);
+                  for (const auto dof : face_dofs)
+                    if (scalar_partitioner->in_local_range(dof))
+                      friction_faces[scalar_partitioner->global_to_local(
+                        dof)] |= 1u << id;
+                  continue;
+                }
               if (prm.boundary[id] == BoundaryType::fixed)
                 bits = (1u << dim) - 1;
               else if (prm.boundary[id] == BoundaryType::slip)
@@ -284,8 +306,12 @@ namespace mpm
                   mask[scalar_partitioner->global_to_local(dof)] |= bits;
             }
     for (unsigned int i = 0; i < n_owned_nodes; ++i)
-      if (mask[i] != 0)
-        node_constraints.emplace_back(i, mask[i]);
+      {
+        if (mask[i] != 0)
+          node_constraints.emplace_back(i, mask[i]);
+        if (friction_faces[i] != 0)
+          node_frictions.emplace_back(i, friction_faces[i]);
+      }
   }
 
 

@@ -28,6 +28,8 @@ namespace mpm
         add("elastic left Cauchy-Green", Fields::n_embedded<dim>);
     if (requests.plastic_strain)
       l.plastic_strain = add("plastic strain", 1);
+    if (requests.surface_area)
+      l.surface_area = add("surface area", dim);
     return l;
   }
 

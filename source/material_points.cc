@@ -11,6 +11,38 @@
 
 namespace mpm
 {
+  namespace
+  {
+    /// A comma-separated list of mesh ids (material or boundary) in
+    /// (whole numbers >= 0); empty gives an empty set.
+    std::set<unsigned int>
+    id_list(const ParameterHandler &prm,
+            const std::string      &path,
+            const std::string      &entry)
+    {
+      const std::string       text = prm.get(entry);
+      std::set<unsigned int> ids;
+      for (const auto &item : Utilities::split_string_list(text, ','))
+        {
+          int id = -1;
+          try
+            {
+              id = Utilities::string_to_int(item);
+            }
+          catch (...)
+            {
+            }
+          if (id < 0)
+            throw InputError(path + "/" + entry,
+                             text,
+                             "must be a comma-separated list of whole "
+                             "numbers >= 0");
+          ids.insert(static_cast<unsigned int>(id));
+        }
+      return ids;
+    }
+  } // namespace
+
 
 
   template <int dim>
@@ -44,6 +76,22 @@ namespace mpm
                       "(comma-separated; empty: all). Bodies that read the "
                       "same file with different ids give each region of "
                       "the mesh its own material.");
+    prm.declare_entry(
+      "pressure boundary ids",
+      "",
+      Patterns::Anything(),
+      "Mesh: boundary ids of the faces that 'pressure' loads (comma-"
+      "separated; empty: none). Each face's area goes to the nearest "
+      "points of its cell, which carry the load from then on.");
+    prm.declare_entry(
+      "pressure",
+      "0",
+      Patterns::Anything(),
+      "Mesh: pressure in Pa on the faces of 'pressure boundary ids', "
+      "positive pushing on the body: an expression in x, y, z (current "
+      "position of the loaded point) and t, e.g. a ramp 'p0*t/T'. A dead "
+      "load: it keeps the direction and area of the faces at t = 0, right "
+      "while the surface turns and stretches little.");
     prm.declare_entry("clip to grid",
                       "false",
                       Patterns::Bool(),
@@ -132,6 +180,14 @@ namespace mpm
       parse_mesh(prm);
     else
       parse_shape(prm);
+    if (mesh_seeds && !mesh_seeds->areas.empty())
+      pressure = Parse::vector_function<dim>({prm.get("pressure")},
+                                             constants,
+                                             name + "/pressure");
+    else if (!Parse::is_zero({prm.get("pressure")}))
+      throw InputError(name + "/pressure",
+                       prm.get("pressure"),
+                       "needs a mesh body with 'pressure boundary ids'");
     density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
     initial_velocity =
       Parse::expression_list(prm, "initial velocity", dim, name);
@@ -201,32 +257,12 @@ namespace mpm
       throw InputError(name + "/mesh file",
                        "",
                        "shape 'mesh' needs the name of a mesh file");
-    std::set<types::material_id> ids;
-    for (const auto &entry :
-         Utilities::split_string_list(prm.get("mesh material ids"), ','))
-      {
-        const auto bad = [&]() {
-          return InputError(name + "/mesh material ids",
-                            prm.get("mesh material ids"),
-                            "must be a comma-separated list of whole numbers "
-                            "in [0, 255)");
-        };
-        int id;
-        try
-          {
-            id = Utilities::string_to_int(entry);
-          }
-        catch (...)
-          {
-            throw bad();
-          }
-        if (id < 0 || id >= numbers::invalid_material_id)
-          throw bad();
-        ids.insert(static_cast<types::material_id>(id));
-      }
-    const unsigned int n = Parse::bounded_double(
+    const auto         material_ids = id_list(prm, name, "mesh material ids");
+    const auto         loaded_ids = id_list(prm, name, "pressure boundary ids");
+    const unsigned int n          = Parse::bounded_double(
       prm, name, "particles per cell", 1, 10); // checked again below
-    MeshSeeds<dim> read = seeds_from_mesh<dim>(file, ids, n, name);
+    MeshSeeds<dim> read =
+      seeds_from_mesh<dim>(file, material_ids, loaded_ids, n, name);
 
     // Sort by grid cell; drop (clip) or refuse the points outside the grid.
     std::vector<unsigned int> order, cells(read.positions.size());
@@ -256,6 +292,8 @@ namespace mpm
         seeds->positions.push_back(read.positions[i]);
         seeds->volumes.push_back(read.volumes[i]);
         seeds->cells.push_back(cells[i]);
+        if (!read.areas.empty())
+          seeds->areas.push_back(read.areas[i]);
       }
     if (seeds->positions.empty())
       throw InputError(name + "/mesh file",
@@ -299,7 +337,11 @@ namespace mpm
             Point<dim>        xi;
             for (unsigned int d = 0; d < dim; ++d)
               xi[d] = std::clamp((x[d] - cell_origin[d]) / h[d], 0., 1.);
-            visit(x, xi, mesh_seeds->volumes[i]);
+            visit(x,
+                  xi,
+                  mesh_seeds->volumes[i],
+                  mesh_seeds->areas.empty() ? Tensor<1, dim>()
+                                            : mesh_seeds->areas[i]);
           }
         return;
       }
@@ -323,7 +365,7 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           x[d] += xi[d] * h[d];
         if (shape->contains(x))
-          visit(x, xi, volume);
+          visit(x, xi, volume, Tensor<1, dim>());
       }
   }
 
@@ -339,9 +381,7 @@ namespace mpm
       }
     unsigned int n = 0;
     for_each_seed(cell_origin,
-                  [&n](const Point<dim> &, const Point<dim> &, const double) {
-                    ++n;
-                  });
+                  [&n](const auto &, const auto &, auto, auto) { ++n; });
     return n;
   }
 
@@ -432,9 +472,10 @@ namespace mpm
           if (cell->is_locally_owned())
             body.for_each_seed(
               cell->vertex(0),
-              [&](const Point<dim> &x,
-                  const Point<dim> &xi,
-                  const double      volume) {
+              [&](const Point<dim>     &x,
+                  const Point<dim>     &xi,
+                  const double          volume,
+                  const Tensor<1, dim> &area) {
                 const double mass = body.density * volume;
                 minimum_mass      = std::min(minimum_mass, mass);
                 std::vector<double> p(l.n_properties, 0.);
@@ -456,6 +497,9 @@ namespace mpm
                 if (l.initial_position != FieldLayout::absent)
                   for (unsigned int d = 0; d < dim; ++d)
                     p[l.initial_position + d] = x[d];
+                if (l.surface_area != FieldLayout::absent)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    p[l.surface_area + d] = area[d];
                 initialise_state(body, stress.get(), x, p.data());
                 Point<dim> start = x;
                 if (displacement)

@@ -85,7 +85,9 @@ namespace mpm
     fields.deformation_gradient =
       integrator_parameters.basis == BasisType::cpgimp;
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
-    points                 = std::make_unique<MaterialPoints<dim>>(*grid,
+    for (const auto &body : body_parameters)
+      fields.surface_area = fields.surface_area || body.pressure;
+    points = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,
                                                    fields,
                                                    comm);

@@ -233,6 +233,8 @@ namespace mpm
         fixed_inverse_density_of_body.push_back(
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
         body_forces.push_back(body.body_force.get());
+        pressures.push_back(body.pressure.get());
+        has_pressures   = has_pressures || body.pressure;
         has_body_forces = has_body_forces || body.body_force;
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
@@ -442,7 +444,10 @@ namespace mpm
     for (auto *f : body_forces)
       if (f != nullptr)
         f->set_time(t);
-    for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+    for (auto *f : pressures)
+      if (f != nullptr)
+        f->set_time(t);
+    for_each_point(basis, [&](auto &point, const double *q, const auto &s) {
       const double m = q[l.mass];
       if (mass_and_momentum)
         {
@@ -466,8 +471,10 @@ namespace mpm
           // Internal force with the current volume and Cauchy stress.
           const SymmetricTensor<2, dim> Vsigma =
             q[l.volume] * Fields::symmetric<dim>(q + l.stress);
-          const Tensor<1, dim> mg =
+          Tensor<1, dim> mg =
             m * (has_body_forces ? gravity + body_force(q) : gravity);
+          if (has_pressures)
+            mg += pressure_force(q, point->get_location());
           for (unsigned int v = 0; v < Basis::n_nodes; ++v)
             {
               const Tensor<1, dim> f =
@@ -479,6 +486,23 @@ namespace mpm
         }
     });
     grid_sums.compress(VectorOperation::add);
+  }
+
+
+  template <int dim>
+  inline Tensor<1, dim>
+  TimeIntegrator<dim>::pressure_force(const double     *q,
+                                      const Point<dim> &x) const
+  {
+    const FieldLayout &l = points.layout();
+    if (FunctionParser<dim> *p = pressures[q[l.body]])
+      {
+        const Tensor<1, dim> area = Fields::vector<dim>(q + l.surface_area);
+        // Most points of a loaded body lie inside it: skip the parser.
+        if (area.norm_square() > 0)
+          return -p->value(x) * area;
+      }
+    return Tensor<1, dim>();
   }
 
 
@@ -552,8 +576,42 @@ namespace mpm
       for (unsigned int d = 0; d < dim; ++d)
         if (mask & (1u << d))
           u[n_velocities * i + slot + d] = 0;
+    const double mu = grid.parameters().friction_coefficient;
+    for (const auto &[i, faces] : grid.friction_nodes())
+      for (unsigned int f = 0; f < 2 * dim; ++f)
+        if (faces & (1u << f))
+          apply_coulomb_contact(u + n_velocities * i + slot, f, mu);
     if (velocity_region.enabled())
       velocity_region.enforce(u, n_velocities, slot, dt);
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::apply_coulomb_contact(double            *v,
+                                             const unsigned int face,
+                                             const double       mu)
+  {
+    // The face's outward normal is +-e_axis. Only a velocity into the face
+    // is in contact; its removal is the normal impulse (per unit mass), and
+    // friction takes at most mu times that from the tangential velocity.
+    const unsigned int axis   = face / 2;
+    const double       sign   = (face % 2 == 0) ? -1. : 1.;
+    const double       inward = sign * v[axis];
+    if (!(inward > 0))
+      return;
+    v[axis]              = 0;
+    double tangential_sq = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d != axis)
+        tangential_sq += v[d] * v[d];
+    if (tangential_sq == 0)
+      return;
+    const double tangential = std::sqrt(tangential_sq);
+    const double scale      = std::max(0., 1. - mu * inward / tangential);
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d != axis)
+        v[d] *= scale;
   }
 
 

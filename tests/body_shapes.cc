@@ -221,7 +221,7 @@ namespace
   {
     try
       {
-        seeds_from_mesh<2>(file, ids, 2, "Body");
+        seeds_from_mesh<2>(file, ids, {}, 2, "Body");
       }
     catch (const InputError &e)
       {
@@ -246,7 +246,7 @@ namespace
         const bool triangles   = kind.find("triangles") != std::string::npos;
         for (const unsigned int n : {1u, 2u, 3u})
           {
-            const auto   all = seeds_from_mesh<2>(file, {}, n, "Body");
+            const auto   all = seeds_from_mesh<2>(file, {}, {}, n, "Body");
             const double volume =
               std::accumulate(all.volumes.begin(), all.volumes.end(), 0.);
             check(kind + ", " + std::to_string(n) +
@@ -260,7 +260,7 @@ namespace
           }
         for (const types::material_id id : {1, 2})
           {
-            const auto part = seeds_from_mesh<2>(file, {id}, 2, "Body");
+            const auto part = seeds_from_mesh<2>(file, {id}, {}, 2, "Body");
             check(kind + ", material id " + std::to_string(id) +
                     ": sum JxW - area of its cells",
                   std::accumulate(part.volumes.begin(),

@@ -24,9 +24,10 @@ namespace mpm
   /// What a grid face does to the nodal velocity.
   enum class BoundaryType
   {
-    free,  ///< nothing
-    fixed, ///< all velocity components zero
-    slip   ///< normal velocity component zero
+    free,    ///< nothing
+    fixed,   ///< all velocity components zero
+    slip,    ///< normal velocity component zero
+    friction ///< Coulomb contact: no penetration, free separation
   };
 
   template <int dim>
@@ -41,6 +42,7 @@ namespace mpm
     Point<dim>                        upper_corner;
     std::array<unsigned int, dim>     n_cells;
     std::array<BoundaryType, 2 * dim> boundary; ///< x-, x+, y-, y+, z-, z+
+    double friction_coefficient; ///< Coulomb mu of the friction faces
 
     /// Size of a cell in each direction.
     Tensor<1, dim>
@@ -212,6 +214,14 @@ namespace mpm
       return node_constraints;
     }
 
+    /// Owned nodes on friction faces and the bit mask of those faces
+    /// (bit f: face f = x min, x max, y min, ...).
+    const std::vector<std::pair<unsigned int, unsigned int>> &
+    friction_nodes() const
+    {
+      return node_frictions;
+    }
+
     /// Local indices of the owned nodes in the box [lower, upper].
     std::vector<unsigned int>
     owned_nodes_in_box(const Point<dim> &lower, const Point<dim> &upper) const;
@@ -243,6 +253,7 @@ namespace mpm
     std::vector<unsigned int> owned_cells;
     std::vector<unsigned int> local_node_of_cartesian;
     std::vector<std::pair<unsigned int, unsigned int>> node_constraints;
+    std::vector<std::pair<unsigned int, unsigned int>> node_frictions;
   };
 } // namespace mpm
 

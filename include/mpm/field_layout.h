@@ -38,7 +38,10 @@ namespace mpm
     /// the embedded form of Fields::embedded (3, 4 or 6 values).
     unsigned int elastic_left_cauchy_green = absent;
     unsigned int plastic_strain = absent; ///< 1, equivalent plastic strain
-    unsigned int n_properties   = 0;
+    /// dim: the outward area vector N dA of the loaded surface a point of
+    /// a pressure-loaded body carries (zero inside the body).
+    unsigned int surface_area = absent;
+    unsigned int n_properties = 0;
 
     /// Reserve @p n consecutive slots and return the first.
     unsigned int
@@ -62,6 +65,7 @@ namespace mpm
     bool affine_velocity           = false;
     bool elastic_left_cauchy_green = false;
     bool plastic_strain            = false;
+    bool surface_area              = false;
   };
 
 

@@ -62,6 +62,8 @@ namespace mpm
     /// Body force per unit mass, b(X, t): expressions in the initial
     /// position X = (x, y, z) and time t; null if zero.
     std::shared_ptr<FunctionParser<dim>> body_force;
+    /// Pressure on the loaded faces of a mesh body, p(x, t); null if none.
+    std::shared_ptr<FunctionParser<dim>> pressure;
     /// The scene's named constants, for every expression.
     std::map<std::string, double>  constants;
     std::string                    material_name;
@@ -75,8 +77,9 @@ namespace mpm
     bool
     is_prestressed() const;
 
-    /// Call visit(x, xi, volume) for each point this body seeds in the grid
-    /// cell with lower corner @p cell_origin (x real, xi reference).
+    /// Call visit(x, xi, volume, area) for each point this body seeds in the
+    /// grid cell with lower corner @p cell_origin (x real, xi reference,
+    /// area: the loaded surface the point carries, see MeshSeeds).
     template <typename Visitor>
     void
     for_each_seed(const Point<dim> &cell_origin, const Visitor &visit) const;

@@ -177,6 +177,9 @@ namespace mpm
                       const unsigned int slot);
     void
     update_stresses(const double dt);
+    /// Coulomb contact of the nodal velocity @p v with grid face @p face.
+    static void
+    apply_coulomb_contact(double *v, const unsigned int face, const double mu);
     /// Boundary constraints on the nodal velocities in @p slot; @p dt > 0
     /// at the force update, where reactions are measured.
     void
@@ -191,6 +194,9 @@ namespace mpm
     /// Body force per unit mass b(X, t) of a point (without gravity).
     Tensor<1, dim>
     body_force(const double *q) const;
+    /// The pressure load a point of a loaded body carries, at @p x.
+    Tensor<1, dim>
+    pressure_force(const double *q, const Point<dim> &x) const;
     /// L at a point from the nodal velocities in @p slot (small-mass guard).
     template <typename Stencil>
     Tensor<2, dim>
@@ -214,6 +220,9 @@ namespace mpm
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
     std::vector<double>                        wave_modulus_of_body;
+    /// Each body's pressure on its loaded faces (null: none).
+    std::vector<FunctionParser<dim> *> pressures;
+    bool                               has_pressures = false;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
     std::vector<double> fixed_inverse_density_of_body;
     /// uGIMP/cpGIMP: initial domain half-width of each body's points, in

@@ -1,4 +1,5 @@
 #include <deal.II/base/quadrature.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/fe/fe_nothing.h>
@@ -79,6 +80,19 @@ namespace mpm
     }
 
 
+    /// Gauss points on the faces of cells of @p kind (a vertex in 1D).
+    template <int dim>
+    Quadrature<dim - 1>
+    face_quadrature(const ReferenceCell &kind, const unsigned int n)
+    {
+      if constexpr (dim == 1)
+        return QGauss<0>(n);
+      else
+        return kind.face_reference_cell(0)
+          .template get_gauss_type_quadrature<dim - 1>(n);
+    }
+
+
     /// FEValues for the Gauss points of one kind of cell (quadrilaterals,
     /// triangles, ...): a mesh may mix them.
     template <int dim>
@@ -90,11 +104,52 @@ namespace mpm
                  element,
                  kind.template get_gauss_type_quadrature<dim>(n),
                  update_quadrature_points | update_JxW_values)
+        , face_values(kind.template get_default_linear_mapping<dim>(),
+                      element,
+                      face_quadrature<dim>(kind, n),
+                      update_quadrature_points | update_JxW_values |
+                        update_normal_vectors)
       {
       }
-      FE_Nothing<dim> element;
-      FEValues<dim>   values;
+      FE_Nothing<dim>   element;
+      FEValues<dim>     values;
+      FEFaceValues<dim> face_values;
     };
+
+
+    /// Hand the area of @p cell's loaded faces to its points, which are the
+    /// last n_quadrature_points of @p seeds.
+    template <int dim>
+    void
+    add_face_areas(
+      const typename Triangulation<dim>::active_cell_iterator &cell,
+      const std::set<types::boundary_id>                      &loaded,
+      CellKind<dim>                                           &kind,
+      MeshSeeds<dim>                                          &seeds,
+      std::set<types::boundary_id>                            &seen_faces)
+    {
+      const unsigned int n_points = kind.values.n_quadrature_points;
+      const unsigned int first    = seeds.positions.size() - n_points;
+      seeds.areas.resize(seeds.positions.size());
+      for (const unsigned int f : cell->face_indices())
+        if (cell->at_boundary(f) && loaded.count(cell->face(f)->boundary_id()))
+          {
+            seen_faces.insert(cell->face(f)->boundary_id());
+            kind.face_values.reinit(cell, f);
+            for (unsigned int q = 0; q < kind.face_values.n_quadrature_points;
+                 ++q)
+              {
+                const Point<dim> &x = kind.face_values.quadrature_point(q);
+                unsigned int      nearest = first;
+                for (unsigned int i = first + 1; i < first + n_points; ++i)
+                  if (x.distance_square(seeds.positions[i]) <
+                      x.distance_square(seeds.positions[nearest]))
+                    nearest = i;
+                seeds.areas[nearest] +=
+                  kind.face_values.JxW(q) * kind.face_values.normal_vector(q);
+              }
+          }
+    }
   } // namespace
 
 
@@ -102,6 +157,7 @@ namespace mpm
   MeshSeeds<dim>
   seeds_from_mesh(const std::string                  &file,
                   const std::set<types::material_id> &material_ids,
+                  const std::set<types::boundary_id> &loaded_boundary_ids,
                   const unsigned int                  n,
                   const std::string                  &path)
   {
@@ -111,6 +167,7 @@ namespace mpm
     MeshSeeds<dim>                                          seeds;
     std::map<ReferenceCell, std::unique_ptr<CellKind<dim>>> kinds;
     std::set<types::material_id>                            seen;
+    std::set<types::boundary_id>                            seen_faces;
     for (const auto &cell : mesh.active_cell_iterators())
       {
         seen.insert(cell->material_id());
@@ -144,7 +201,15 @@ namespace mpm
             seeds.positions.push_back(kind->values.quadrature_point(q));
             seeds.volumes.push_back(volume);
           }
+        if (!loaded_boundary_ids.empty())
+          add_face_areas(cell, loaded_boundary_ids, *kind, seeds, seen_faces);
       }
+    for (const auto id : loaded_boundary_ids)
+      if (seen_faces.count(id) == 0)
+        throw InputError(path + "/pressure boundary ids",
+                         std::to_string(id),
+                         "no boundary face of the body's cells in '" + file +
+                           "' has this boundary id");
     for (const auto id : material_ids)
       if (seen.count(id) == 0)
         {
@@ -163,16 +228,19 @@ namespace mpm
   template MeshSeeds<1>
   seeds_from_mesh<1>(const std::string &,
                      const std::set<types::material_id> &,
+                     const std::set<types::boundary_id> &,
                      const unsigned int,
                      const std::string &);
   template MeshSeeds<2>
   seeds_from_mesh<2>(const std::string &,
                      const std::set<types::material_id> &,
+                     const std::set<types::boundary_id> &,
                      const unsigned int,
                      const std::string &);
   template MeshSeeds<3>
   seeds_from_mesh<3>(const std::string &,
                      const std::set<types::material_id> &,
+                     const std::set<types::boundary_id> &,
                      const unsigned int,
                      const std::string &);
 } // namespace mpm

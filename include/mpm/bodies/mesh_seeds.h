@@ -2,6 +2,7 @@
 #define mpm_bodies_mesh_seeds_h
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
 #include <set>
@@ -18,6 +19,9 @@ namespace mpm
   {
     std::vector<Point<dim>> positions;
     std::vector<double>     volumes;
+    /// With loaded boundaries: each point's share N dA of their area
+    /// (outward normal), zero for points away from them; else empty.
+    std::vector<Tensor<1, dim>> areas;
     /// The background-grid cell of each seed; the body sorts the seeds by
     /// it, so that a cell finds its seeds by binary search.
     std::vector<unsigned int> cells;
@@ -37,6 +41,7 @@ namespace mpm
   MeshSeeds<dim>
   seeds_from_mesh(const std::string                  &file,
                   const std::set<types::material_id> &material_ids,
+                  const std::set<types::boundary_id> &loaded_boundary_ids,
                   const unsigned int                  n,
                   const std::string                  &path);
 } // namespace mpm
