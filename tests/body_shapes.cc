@@ -276,6 +276,29 @@ namespace
                        in_ring);
           }
       }
+    for (const std::string kind :
+         {"quarter_annulus", "quarter_annulus_triangles"})
+      {
+        // The outward N dA of the inner arc (boundary id 10, r = 1) sums to
+        // the chord turned outward, (-1, -1), on any polygonal arc.
+        const auto loaded = seeds_from_mesh<2>(
+          directory + "/" + kind + ".msh", {}, {10}, 2, "Body");
+        Tensor<1, 2> total;
+        unsigned int carriers = 0;
+        for (unsigned int i = 0; i < loaded.areas.size(); ++i)
+          if (loaded.areas[i].norm() > 0)
+            {
+              total += loaded.areas[i];
+              ++carriers;
+              all_ok = all_ok && loaded.positions[i].norm() < 1.25;
+            }
+        check(kind + ": sum of N dA over boundary id 10 - (-1, -1)",
+              (total - Tensor<1, 2>({-1., -1.})).norm(),
+              1e-13);
+        check(kind + ": points carrying the load - 2 per face (6 faces)",
+              carriers - 12.,
+              0);
+      }
     const std::string file = directory + "/quarter_annulus.msh";
     check_error("an id no cell has names the ids present",
                 mesh_error(file, {7}),
