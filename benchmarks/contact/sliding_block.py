@@ -10,25 +10,23 @@ against v0^2 / (2 mu g), with relative errors.
   sliding_block.py --exe build/dealii-mpm                 mu = 0.1, 0.3, 0.5
   sliding_block.py --exe ... --check --max-error 0.02     a ctest assertion
 """
-import argparse, csv, os, subprocess, sys, tempfile
+import argparse, os, sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+
 G, V0 = 9.81, 1.0
 
 
-def run(exe, mu):
+def run(exe, mu, extra):
     stop_time = V0 / (mu * G)
-    with tempfile.TemporaryDirectory() as out:
-        subprocess.run([exe, os.path.join(HERE, "sliding_block.prm"),
-                        "-s", "Grid/friction coefficient=%g" % mu,
-                        "-s", "Simulation/end time=%g" % (1.3 * stop_time),
-                        "-s", "Grid/upper corner=%g, 0.2" % (0.4 + 1.1 * V0 ** 2 / (2 * mu * G)),
-                        "-s", "Grid/cells=%d, 8" % round((0.4 + 1.1 * V0 ** 2 / (2 * mu * G)) / 0.025),
-                        "-s", "Output/interval=0.01",
-                        "-s", "Output/directory=" + out,
-                        "-s", "Output/progress interval=1e9"],
-                       check=True, stdout=subprocess.DEVNULL)
-        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
+    width = 0.4 + 1.1 * V0 ** 2 / (2 * mu * G)
+    rows = run_scene(exe, "contact/sliding_block.prm", [
+        "-s", "Grid/friction coefficient=%g" % mu,
+        "-s", "Simulation/end time=%g" % (1.3 * stop_time),
+        "-s", "Grid/upper corner=%g, 0.2" % width,
+        "-s", "Grid/cells=%d, 8" % round(width / 0.025),
+        "-s", "Output/interval=0.01"] + extra).rows
     speed = {round(float(r["time"]), 6): float(r["momentum_x"]) / float(r["mass"])
              for r in rows}
     t0, t1 = 0.05, min(0.15, 0.8 * stop_time)
@@ -42,7 +40,7 @@ def main():
     parser = argparse.ArgumentParser(
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--exe", required=True)
+    sweep_arguments(parser)
     parser.add_argument("--mu", default="0.1,0.3,0.5")
     parser.add_argument("--check", action="store_true")
     parser.add_argument("--max-error", type=float, default=0.02)
@@ -51,7 +49,7 @@ def main():
           "stop_distance,exact_stop_distance,stop_distance_error")
     ok = True
     for mu in [float(x) for x in a.mu.split(",")]:
-        deceleration, distance = run(a.exe, mu)
+        deceleration, distance = run(a.exe, mu, overrides(a))
         exact_a, exact_d = mu * G, V0 ** 2 / (2 * mu * G)
         ea, ed = deceleration / exact_a - 1, distance / exact_d - 1
         print("%g,%.5f,%.5f,%.2e,%.5f,%.5f,%.2e" %

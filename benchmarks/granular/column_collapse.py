@@ -18,9 +18,10 @@ the experiments (--scatter, 20 % by default).
   column_collapse.py --exe build/dealii-mpm                    the sweep
   column_collapse.py --exe ... --aspect 1 --cells 8 --check    a ctest
 """
-import argparse, csv, os, subprocess, sys, tempfile
+import argparse, os, sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
 L0 = 0.2
 
 
@@ -36,22 +37,15 @@ def run(exe, a, n, end_time, extra):
     width = L0 * (1 + 1.5 * max(laws(a))) + 2 * h
     height = a * L0 + 2 * h
     nx, ny = round(width / h), round(height / h)
-    with tempfile.TemporaryDirectory() as out:
-        args = [exe, os.path.join(HERE, "column_collapse.prm"),
-                "-s", "Simulation/constants=a=%g, L0=%g, rho=1500, g=9.81, "
-                      "K0=0.5" % (a, L0),
-                "-s", "Simulation/end time=%g" % end_time,
-                "-s", "Grid/upper corner=%.17g, %.17g" % (nx * h, ny * h),
-                "-s", "Grid/cells=%d, %d" % (nx, ny),
-                "-s", "Bodies/Body 0/upper corner=%.17g, %.17g" % (L0, a * L0),
-                "-s", "Output/directory=" + out,
-                "-s", "Output/fields=plastic strain",
-                "-s", "Output/interval=%g" % (end_time / 20),
-                "-s", "Output/progress interval=1e9"] + extra
-        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
-        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
-        timing = {r["phase"]: r for r in
-                  csv.DictReader(open(os.path.join(out, "timing.csv")))}
+    r = run_scene(exe, "granular/column_collapse.prm", [
+        "-s", "Simulation/constants=a=%g, L0=%g, rho=1500, g=9.81, "
+              "K0=0.5" % (a, L0),
+        "-s", "Simulation/end time=%g" % end_time,
+        "-s", "Grid/upper corner=%.17g, %.17g" % (nx * h, ny * h),
+        "-s", "Grid/cells=%d, %d" % (nx, ny),
+        "-s", "Bodies/Body 0/upper corner=%.17g, %.17g" % (L0, a * L0),
+        "-s", "Output/interval=%g" % (end_time / 20)] + extra)
+    rows, timing = r.rows, r.timing
     spacing = h / 2  # 2 points per cell and direction
     front = float(rows[-1]["body0_x_max"]) + spacing / 2
     potential = float(rows[0]["gravitational_energy"]) - \
@@ -65,7 +59,7 @@ def main():
     parser = argparse.ArgumentParser(
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--exe", required=True)
+    sweep_arguments(parser)
     parser.add_argument("--aspect", default="0.5,1,2,4",
                         help="aspect ratios a = H0/L0, comma-separated")
     parser.add_argument("--cells", default="8,16",
@@ -74,10 +68,8 @@ def main():
     parser.add_argument("--check", action="store_true",
                         help="fail unless every runout lies in the envelope "
                              "and every deposit is at rest")
-    parser.add_argument("-s", action="append", default=[],
-                        help="a parameter override passed on to dealii-mpm")
     a = parser.parse_args()
-    extra = sum([["-s", s] for s in a.s], [])
+    extra = overrides(a)
 
     print("aspect,cells_per_width,runout,lube,lajeunesse,envelope_low,"
           "envelope_high,inside,kinetic_over_released,wall_seconds,"

@@ -14,9 +14,11 @@ final length 21.4-21.6 mm, footprint radius about 7.0 mm.
   taylor_bar.py --exe build/dealii-mpm                 the ladder n = 4, 8
   taylor_bar.py --exe ... --cells 4 --check            a ctest assertion
 """
-import argparse, csv, os, subprocess, sys, tempfile
+import argparse, os, sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+
 R0, L0 = 3.2e-3, 32.4e-3
 LENGTH = (21.4, 21.6)  # mm
 FOOTPRINT = 7.0        # mm
@@ -26,18 +28,10 @@ def run(exe, n, extra):
     h = R0 / n
     # x, z: room for a footprint of 3 R0; y: the bar plus a cell.
     nx, ny = 3 * n, round(L0 / h) + 2
-    with tempfile.TemporaryDirectory() as out:
-        args = [exe, os.path.join(HERE, "taylor_bar.prm"),
-                "-s", "Grid/upper corner=%.17g, %.17g, %.17g" %
-                      (nx * h, ny * h, nx * h),
-                "-s", "Grid/cells=%d, %d, %d" % (nx, ny, nx),
-                "-s", "Output/directory=" + out,
-                "-s", "Output/fields=plastic strain",
-                "-s", "Output/progress interval=1e9"] + extra
-        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
-        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
-        timing = {r["phase"]: r for r in
-                  csv.DictReader(open(os.path.join(out, "timing.csv")))}
+    r = run_scene(exe, "impact/taylor_bar.prm", [
+        "-s", "Grid/upper corner=%.17g, %.17g, %.17g" % (nx * h, ny * h, nx * h),
+        "-s", "Grid/cells=%d, %d, %d" % (nx, ny, nx)] + extra)
+    rows, timing = r.rows, r.timing
     half_spacing = h / 4  # 2 points per cell and direction
     last = rows[-1]
     length = (float(last["body0_y_max"]) + half_spacing) * 1e3
@@ -52,7 +46,7 @@ def main():
     parser = argparse.ArgumentParser(
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--exe", required=True)
+    sweep_arguments(parser)
     parser.add_argument("--cells", default="4,8",
                         help="cells across the radius, comma-separated")
     parser.add_argument("--check", action="store_true",
@@ -62,10 +56,8 @@ def main():
                         help="mm beyond the reference range")
     parser.add_argument("--footprint-tolerance", type=float, default=0.7,
                         help="mm from the reference")
-    parser.add_argument("-s", action="append", default=[],
-                        help="a parameter override passed on to dealii-mpm")
     a = parser.parse_args()
-    extra = sum([["-s", s] for s in a.s], [])
+    extra = overrides(a)
 
     print("cells_per_radius,h_mm,length_mm,length_error_mm,footprint_mm,"
           "footprint_error_mm,kinetic_left,wall_seconds,ns_per_particle_step")

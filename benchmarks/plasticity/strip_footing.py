@@ -11,26 +11,21 @@ Prandtl's 2 + pi, and the wall time.
   strip_footing.py --exe ... --cells 10 --check --max-error 0.12
                                                             a ctest assertion
 """
-import argparse, csv, math, os, subprocess, sys, tempfile
+import argparse, math, os, sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import run_scene  # noqa: E402
+
 PRANDTL = 2 + math.pi
 
 
 def run(exe, per_half_width, end_time):
     # The grid is 5 m x 3.5 m and the footing's half width 0.5 m.
     n = per_half_width
-    with tempfile.TemporaryDirectory() as out:
-        args = [exe, os.path.join(HERE, "strip_footing.prm"),
-                "-s", "Grid/cells=%d,%d" % (10 * n, 7 * n),
-                "-s", "Simulation/end time=%g" % end_time,
-                "-s", "Output/directory=" + out,
-                "-s", "Output/fields=plastic strain",
-                "-s", "Output/progress interval=1e9"]
-        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
-        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
-        timing = {r["phase"]: r for r in
-                  csv.DictReader(open(os.path.join(out, "timing.csv")))}
+    r = run_scene(exe, "plasticity/strip_footing.prm", [
+        "-s", "Grid/cells=%d,%d" % (10 * n, 7 * n),
+        "-s", "Simulation/end time=%g" % end_time], fields="plastic strain")
+    rows, timing = r.rows, r.timing
     c, half_width = 1e4, 0.5
     q = [-float(r["region_force_y"]) / half_width / c for r in rows]
     return max(q), float(rows[-1]["wall_seconds"]), \

@@ -15,11 +15,10 @@ line by 1 %, beside the same for the exact curve (first yield is at
   thick_cylinder.py --exe build/dealii-mpm
   thick_cylinder.py --exe ... --check --max-error 0.05      a ctest
 """
-import argparse, csv, math, os, subprocess, sys, tempfile
+import argparse, math, os, sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.dirname(HERE))
-from vtu_points import read_points  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
 
 A, B, E, NU, SY = 0.1, 0.2, 210e9, 0.3, 0.24e9
 K = SY / math.sqrt(3)
@@ -54,26 +53,17 @@ def main():
     parser = argparse.ArgumentParser(
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--exe", required=True)
+    sweep_arguments(parser)
     parser.add_argument("--up-to", type=float, default=0.95,
                         help="compare up to this fraction of p_L")
     parser.add_argument("--check", action="store_true")
     parser.add_argument("--max-error", type=float, default=0.05)
-    parser.add_argument("-s", action="append", default=[],
-                        help="a parameter override passed on to dealii-mpm")
     a = parser.parse_args()
-    extra = sum([["-s", s] for s in a.s], [])
+    extra = overrides(a)
 
-    with tempfile.TemporaryDirectory() as out:
-        subprocess.run([a.exe, os.path.join(HERE, "thick_cylinder.prm"),
-                        "-s", "Output/directory=" + out,
-                        "-s", "Output/fields=plastic strain",
-                        "-s", "Output/progress interval=1e9"] + extra,
-                       check=True, stdout=subprocess.DEVNULL)
-        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
-        points = read_points(os.path.join(out, "particles_00000.pvtu"))
-        timing = {r["phase"]: r for r in
-                  csv.DictReader(open(os.path.join(out, "timing.csv")))}
+    r = run_scene(a.exe, "plasticity/thick_cylinder.prm", extra, frame=0,
+                  fields="plastic strain")
+    rows, timing, points = r.rows, r.timing, r.points
     x, y, _ = max(points, key=lambda q: q[0])
     r, cos = math.hypot(x, y), x / math.hypot(x, y)
     # The ramp and its end, from the scene (or its overrides).

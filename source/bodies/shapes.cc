@@ -10,6 +10,34 @@ namespace mpm
 {
   namespace
   {
+    /// The radii of a round shape and of its hole (0: none), read and
+    /// checked once for the ball and the cylinder.
+    struct Radii
+    {
+      Radii(const ParameterHandler &prm, const std::string &path)
+        : outer(Parse::bounded_double(prm, path, "radius", 0, 1e300, true))
+        , inner(Parse::bounded_double(prm,
+                                      path,
+                                      "inner radius",
+                                      0,
+                                      outer,
+                                      false,
+                                      true))
+      {
+      }
+
+      /// Is a point at squared distance @p r2 from the centre (or axis)
+      /// in the material?
+      bool
+      admit(const double r2) const
+      {
+        return r2 < outer * outer && r2 >= inner * inner;
+      }
+
+      const double outer, inner;
+    };
+
+
     template <int dim>
     class Box : public Shape<dim>
     {
@@ -58,22 +86,14 @@ namespace mpm
     public:
       Ball(const ParameterHandler &prm, const std::string &path)
         : center(Parse::point<dim>(prm, path, "center"))
-        , radius(Parse::bounded_double(prm, path, "radius", 0, 1e300, true))
-        , inner_radius(Parse::bounded_double(prm,
-                                             path,
-                                             "inner radius",
-                                             0,
-                                             radius,
-                                             false,
-                                             true))
+        , radii(prm, path)
       {
       }
 
       bool
       contains(const Point<dim> &x) const override
       {
-        const double r2 = x.distance_square(center);
-        return r2 < radius * radius && r2 >= inner_radius * inner_radius;
+        return radii.admit(x.distance_square(center));
       }
 
       BoundingBox<dim>
@@ -82,8 +102,8 @@ namespace mpm
         Point<dim> lower = center, upper = center;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            lower[d] -= radius;
-            upper[d] += radius;
+            lower[d] -= radii.outer;
+            upper[d] += radii.outer;
           }
         return BoundingBox<dim>({lower, upper});
       }
@@ -96,7 +116,7 @@ namespace mpm
 
     private:
       const Point<dim> center;
-      const double     radius, inner_radius;
+      const Radii      radii;
     };
 
 
@@ -108,14 +128,7 @@ namespace mpm
         : center(Parse::point<3>(prm, path, "center"))
         , axis(Parse::vector<3>(prm, path, "axis"))
         , length(Parse::bounded_double(prm, path, "length", 0, 1e300, true))
-        , radius(Parse::bounded_double(prm, path, "radius", 0, 1e300, true))
-        , inner_radius(Parse::bounded_double(prm,
-                                             path,
-                                             "inner radius",
-                                             0,
-                                             radius,
-                                             false,
-                                             true))
+        , radii(prm, path)
       {
         if (!(axis.norm() > 0))
           throw InputError(path + "/axis",
@@ -129,9 +142,8 @@ namespace mpm
       {
         const Tensor<1, 3> r     = x - center;
         const double       along = r * axis;
-        const double       r2    = (r - along * axis).norm_square();
-        return std::abs(along) <= 0.5 * length && r2 < radius * radius &&
-               r2 >= inner_radius * inner_radius;
+        return std::abs(along) <= 0.5 * length &&
+               radii.admit((r - along * axis).norm_square());
       }
 
       BoundingBox<3>
@@ -142,8 +154,8 @@ namespace mpm
           {
             // The end disks' extent plus half the length along the axis.
             const double a = std::abs(axis[d]);
-            const double e =
-              0.5 * length * a + radius * std::sqrt(std::max(0., 1 - a * a));
+            const double e = 0.5 * length * a +
+                             radii.outer * std::sqrt(std::max(0., 1 - a * a));
             lower[d] -= e;
             upper[d] += e;
           }
@@ -159,7 +171,8 @@ namespace mpm
     private:
       const Point<3> center;
       Tensor<1, 3>   axis;
-      const double   length, radius, inner_radius;
+      const double   length;
+      const Radii    radii;
     };
 
 

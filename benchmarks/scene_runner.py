@@ -1,0 +1,48 @@
+"""Run a dealii-mpm scene with overrides into a temporary directory and
+return what the benchmark scripts read: the rows of statistics.csv, the
+phases of timing.csv, and optionally the points of one output frame.
+
+    from scene_runner import run_scene
+    result = run_scene(exe, "plasticity/thick_cylinder.prm", ["-s", "..."],
+                       frame=0)
+    result.rows[-1]["kinetic_energy"], result.timing["steps"], result.points
+"""
+import csv, os, subprocess, tempfile
+from collections import namedtuple
+
+from vtu_points import read_points
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+Result = namedtuple("Result", "rows timing points returncode stderr")
+
+
+def run_scene(exe, scene, overrides=(), frame=None, fields="J", check=True):
+    """@p scene is relative to benchmarks/; a failed run raises unless
+    @p check is False (then returncode and stderr say why)."""
+    with tempfile.TemporaryDirectory() as out:
+        r = subprocess.run([exe, os.path.join(HERE, scene),
+                            "-s", "Output/directory=" + out,
+                            "-s", "Output/fields=" + fields,
+                            "-s", "Output/progress interval=1e9"] + list(overrides),
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                           text=True)
+        if check and r.returncode != 0:
+            raise RuntimeError(r.stderr)
+        rows = list(csv.DictReader(open(os.path.join(out, "statistics.csv"))))
+        timing_file = os.path.join(out, "timing.csv")
+        timing = {t["phase"]: t for t in csv.DictReader(open(timing_file))} \
+            if os.path.exists(timing_file) else {}
+        points = read_points(os.path.join(out, "particles_%05d.pvtu" % frame)) \
+            if frame is not None else None
+    return Result(rows, timing, points, r.returncode, r.stderr.strip())
+
+
+def sweep_arguments(parser):
+    """The arguments every driver takes: the executable, and overrides."""
+    parser.add_argument("--exe", required=True, help="the dealii-mpm binary")
+    parser.add_argument("-s", action="append", default=[],
+                        help="a parameter override passed on to dealii-mpm")
+
+
+def overrides(args):
+    return sum([["-s", s] for s in args.s], [])
