@@ -188,6 +188,10 @@ namespace mpm
       throw InputError(name + "/pressure",
                        prm.get("pressure"),
                        "needs a mesh body with 'pressure boundary ids'");
+    else if (!mesh_seeds && !prm.get("pressure boundary ids").empty())
+      throw InputError(name + "/pressure boundary ids",
+                       prm.get("pressure boundary ids"),
+                       "are faces of a mesh: needs shape 'mesh'");
     density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
     initial_velocity =
       Parse::expression_list(prm, "initial velocity", dim, name);

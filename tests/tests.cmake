@@ -295,3 +295,10 @@ mpm_test(column_collapse_mpi2 PRM ../benchmarks/granular/column_collapse.prm NP 
 add_test(NAME sliding_block_friction
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/contact/sliding_block.py
     --exe $<TARGET_FILE:dealii-mpm> --mu 0.3 --check --max-error 0.02)
+#    A pressure needs loaded mesh faces.
+mpm_test(bad_pressure_without_mesh PRM two_disks.prm EXIT 1
+  ARGS -s "Bodies/Body 0/pressure=1e5"
+  ERROR "parameter 'Bodies/Body 0/pressure' = '1e5': needs a mesh body with 'pressure boundary ids'")
+mpm_test(bad_friction_coefficient PRM two_disks.prm EXIT 1
+  ARGS -s "Grid/friction coefficient=-0.1"
+  ERROR "parameter 'Grid/friction coefficient' = '-0.1': must be >= 0")
