@@ -177,16 +177,20 @@ namespace mpm
         auto &kind = kinds[cell->reference_cell()];
         if (!kind)
           {
-            kind = std::make_unique<CellKind<dim>>(cell->reference_cell(), n);
-            // deal.II has Gauss rules on simplices for a few orders only,
-            // and returns an empty rule beyond them.
-            if (kind->values.n_quadrature_points == 0)
+            // deal.II has Gauss rules on simplices (and wedges, pyramids)
+            // for a few orders only; it asserts beyond them, so ask first.
+            const ReferenceCell shape   = cell->reference_cell();
+            const unsigned int  highest = shape.is_hyper_cube() ? 10
+                                          : shape == ReferenceCells::Pyramid ? 2
+                                                                             : 4;
+            if (n > highest)
               throw InputError(path + "/particles per cell",
                                std::to_string(n),
                                "deal.II has no Gauss rule of this order on "
                                "the mesh's " +
-                                 cell->reference_cell().to_string() +
-                                 " cells; use fewer");
+                                 shape.to_string() + " cells; use at most " +
+                                 std::to_string(highest));
+            kind = std::make_unique<CellKind<dim>>(shape, n);
           }
         kind->values.reinit(cell);
         for (unsigned int q = 0; q < kind->values.n_quadrature_points; ++q)
