@@ -31,6 +31,7 @@ namespace mpm
     for (unsigned int b = 0; b < n_bodies; ++b)
       BodyParameters<2>::declare_parameters(prm, b);
     VelocityRegionParameters<2>::declare_parameters(prm);
+    RigidWallParameters<2>::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
     VerificationParameters::declare_parameters(prm);
   }
@@ -51,6 +52,7 @@ namespace mpm
     for (unsigned int b = 0; b < n_bodies; ++b)
       body_parameters[b].parse_parameters(prm, b, grid_parameters);
     velocity_region_parameters.parse_parameters(prm);
+    rigid_wall_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     verification_parameters.parse_parameters(prm);
   }
@@ -87,19 +89,29 @@ namespace mpm
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
     for (const auto &body : body_parameters)
       fields.surface_area = fields.surface_area || body.pressure;
-    points = std::make_unique<MaterialPoints<dim>>(*grid,
+    fields.wall_contact = rigid_wall_parameters.enabled;
+    points              = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,
                                                    fields,
                                                    comm);
     points->generate();
     velocity_region =
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
-    integrator = std::make_unique<TimeIntegrator<dim>>(
-      integrator_parameters, *grid, *points, *velocity_region, *timer, comm);
+    rigid_wall   = std::make_unique<RigidWall<dim>>(rigid_wall_parameters,
+                                                  grid->min_cell_size());
+    integrator   = std::make_unique<TimeIntegrator<dim>>(integrator_parameters,
+                                                       *grid,
+                                                       *points,
+                                                       *velocity_region,
+                                                       *timer,
+                                                       comm,
+                                                       rigid_wall.get());
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
     std::vector<std::string> columns = verification->columns();
     for (const auto &c : velocity_region->columns())
+      columns.push_back(c);
+    for (const auto &c : rigid_wall->columns())
       columns.push_back(c);
     if (output_parameters.body_extents)
       for (unsigned int b = 0; b < body_parameters.size(); ++b)
@@ -172,6 +184,9 @@ namespace mpm
       return;
     for (const double f :
          velocity_region->mean_force_since_last_call(integrator->time(), comm))
+      extra.push_back(f);
+    for (const double f :
+         rigid_wall->mean_force_since_last_call(integrator->time(), comm))
       extra.push_back(f);
     if (output_parameters.body_extents)
       for (const auto &[lower, upper] : points->body_extents())

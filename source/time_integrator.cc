@@ -217,11 +217,14 @@ namespace mpm
     MaterialPoints<dim>             &points,
     VelocityRegion<dim>             &velocity_region,
     TimerOutput                     &timer,
-    MPI_Comm                         comm)
+    MPI_Comm                         comm,
+    RigidWall<dim>                  *rigid_wall)
     : prm(parameters)
     , grid(grid)
     , points(points)
     , velocity_region(velocity_region)
+    , rigid_wall(rigid_wall != nullptr && rigid_wall->enabled() ? rigid_wall
+                                                                : nullptr)
     , timer(timer)
     , comm(comm)
   {
@@ -325,6 +328,9 @@ namespace mpm
   void
   TimeIntegrator<dim>::advance(const Basis &basis, const double dt)
   {
+    if (rigid_wall)
+      rigid_wall->act_on_points(
+        points.handler(), points.layout(), wave_modulus_of_body, t, dt);
     switch (prm.scheme)
       {
         case UpdateScheme::USL:
@@ -475,6 +481,8 @@ namespace mpm
             m * (has_body_forces ? gravity + body_force(q) : gravity);
           if (has_pressures)
             mg += pressure_force(q, point->get_location());
+          if (rigid_wall)
+            mg += Fields::vector<dim>(q + l.wall_force);
           for (unsigned int v = 0; v < Basis::n_nodes; ++v)
             {
               const Tensor<1, dim> f =

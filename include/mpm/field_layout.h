@@ -41,6 +41,10 @@ namespace mpm
     /// dim: the outward area vector N dA of the loaded surface a point of
     /// a pressure-loaded body carries (zero inside the body).
     unsigned int surface_area = absent;
+    /// dim each: a rigid wall's force on the point this step, and the
+    /// elastic tangential displacement of its contact (stick spring).
+    unsigned int wall_force   = absent;
+    unsigned int wall_slip    = absent;
     unsigned int n_properties = 0;
 
     /// Reserve @p n consecutive slots and return the first.
@@ -66,6 +70,7 @@ namespace mpm
     bool elastic_left_cauchy_green = false;
     bool plastic_strain            = false;
     bool surface_area              = false;
+    bool wall_contact              = false;
   };
 
 

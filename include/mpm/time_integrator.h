@@ -8,6 +8,7 @@
 
 #include <mpm/background_grid.h>
 #include <mpm/basis.h>
+#include <mpm/boundary_conditions/rigid_wall.h>
 #include <mpm/boundary_conditions/velocity_region.h>
 #include <mpm/material_points.h>
 
@@ -89,7 +90,8 @@ namespace mpm
                    MaterialPoints<dim>             &points,
                    VelocityRegion<dim>             &velocity_region,
                    TimerOutput                     &timer,
-                   MPI_Comm                         comm);
+                   MPI_Comm                         comm,
+                   RigidWall<dim>                  *rigid_wall = nullptr);
 
     /// Advance by one step, of at most @p max_dt. Throws RunError (on all
     /// ranks) with a diagnosis if the new state is not sound.
@@ -214,8 +216,10 @@ namespace mpm
     const BackgroundGrid<dim>      &grid;
     MaterialPoints<dim>            &points;
     VelocityRegion<dim>            &velocity_region;
-    TimerOutput                    &timer;
-    MPI_Comm                        comm;
+    /// Null, or a wall acting on the points (only if enabled).
+    RigidWall<dim> *rigid_wall;
+    TimerOutput    &timer;
+    MPI_Comm        comm;
 
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;

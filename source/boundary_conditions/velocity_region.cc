@@ -114,6 +114,7 @@ namespace mpm
                                const unsigned int slot,
                                const double       dt)
   {
+    Tensor<1, dim> impulse;
     for (const unsigned int i : nodes)
       {
         double *node = u + stride * i;
@@ -125,6 +126,7 @@ namespace mpm
               node[slot + d] = prm.velocity[d];
             }
       }
+    meter.add(impulse);
   }
 
 
@@ -145,15 +147,9 @@ namespace mpm
   VelocityRegion<dim>::mean_force_since_last_call(const double time,
                                                   MPI_Comm     comm)
   {
-    std::vector<double> force;
     if (!prm.enabled)
-      return force;
-    const Tensor<1, dim> total = Utilities::MPI::sum(impulse, comm);
-    for (unsigned int d = 0; d < dim; ++d)
-      force.push_back(time > last_time ? total[d] / (time - last_time) : 0.);
-    impulse   = Tensor<1, dim>();
-    last_time = time;
-    return force;
+      return {};
+    return meter.mean_since_last_call(time, comm);
   }
 
 

@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/background_grid.h>
+#include <mpm/boundary_conditions/reaction_meter.h>
 
 #include <array>
 #include <string>
@@ -77,8 +78,7 @@ namespace mpm
   private:
     const VelocityRegionParameters<dim> prm;
     const std::vector<unsigned int>     nodes;
-    Tensor<1, dim>                      impulse;
-    double                              last_time = 0;
+    ReactionMeter<dim>                  meter;
   };
 } // namespace mpm
 

@@ -1,0 +1,49 @@
+#ifndef mpm_boundary_conditions_reaction_meter_h
+#define mpm_boundary_conditions_reaction_meter_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/tensor.h>
+
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The mean force of a boundary condition over an output interval: the
+   * impulses it gives are summed, and read as impulse / elapsed time.
+   * Explicit MPM's nodal or contact reactions are noisy from step to step;
+   * their mean over an interval is what a load cell would show.
+   */
+  template <int dim>
+  class ReactionMeter
+  {
+  public:
+    void
+    add(const Tensor<1, dim> &impulse)
+    {
+      sum += impulse;
+    }
+
+    /// The mean force since the last call, summed over the ranks of
+    /// @p comm (collective), and restart.
+    std::vector<double>
+    mean_since_last_call(const double time, MPI_Comm comm)
+    {
+      const Tensor<1, dim> total = Utilities::MPI::sum(sum, comm);
+      std::vector<double>  force;
+      for (unsigned int d = 0; d < dim; ++d)
+        force.push_back(time > last_time ? total[d] / (time - last_time) : 0.);
+      sum       = Tensor<1, dim>();
+      last_time = time;
+      return force;
+    }
+
+  private:
+    Tensor<1, dim> sum;
+    double         last_time = 0;
+  };
+} // namespace mpm
+
+#endif

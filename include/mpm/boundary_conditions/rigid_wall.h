@@ -1,0 +1,105 @@
+#ifndef mpm_boundary_conditions_rigid_wall_h
+#define mpm_boundary_conditions_rigid_wall_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/boundary_conditions/reaction_meter.h>
+#include <mpm/field_layout.h>
+
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /// A rigid plane at any angle to the grid (a point on it and its normal),
+  /// moving at a constant velocity, with Coulomb friction.
+  template <int dim>
+  struct RigidWallParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    bool           enabled = false;
+    Point<dim>     point;    ///< on the plane at t = 0
+    Tensor<1, dim> normal;   ///< unit, pointing to the material's side
+    Tensor<1, dim> velocity; ///< of the plane
+    double         friction_coefficient = 0;
+    double         penalty              = 1; ///< stiffness factor kappa
+    double         damping_ratio        = 0.5;
+  };
+
+
+  /**
+   * The wall acts on the material points by a penalty (cl-mpm's approach):
+   * a point whose centre crosses the plane by delta is pushed back by
+   * f_n = kappa M l^(dim-1) delta / h (l = V^(1/dim) the point's size, M
+   * the body's p-wave modulus, h the cell size), damped in
+   * the normal direction at a fraction of critical. Friction is a stick
+   * spring of the same stiffness and damping on the tangential
+   * displacement since the point touched (Cundall and Strack's contact), limited to mu f_n: beyond
+   * it the point slides and the spring holds the Coulomb force. A bare
+   * Coulomb force cannot hold a body at rest (it reverses the velocity it
+   * stops), and capping it at the point's momentum lets a block creep.
+   * With kappa = 1 the contact's frequency stays below the CFL step's
+   * limit (omega dt <= CFL sqrt(2 kappa) < 2). The forces join the points'
+   * external forces, so every basis and scheme sees the wall; their
+   * reaction, summed between outputs, is the wall's mean force.
+   *
+   * Contact is at the points' centres, not at l/2 before them: the points
+   * of a body filled on a lattice lie anywhere between 0 and l from a
+   * surface that is not aligned with the grid, and a radius would start
+   * some of them deep in the wall. The body's edge may thus sink up to
+   * l/2 into the wall.
+   */
+  template <int dim>
+  class RigidWall
+  {
+  public:
+    RigidWall(const RigidWallParameters<dim> &parameters,
+              const double                    cell_size);
+
+    bool
+    enabled() const
+    {
+      return prm.enabled;
+    }
+
+    /**
+     * Place the wall at time @p t and store, in each point's 'wall force'
+     * field, the wall's force on it over the step @p dt (zero if not in
+     * contact), updating its stick spring; the reaction joins the wall's
+     * impulse. @p wave_modulus_of_body gives M per body.
+     */
+    void
+    act_on_points(Particles::ParticleHandler<dim> &points,
+                  const FieldLayout               &layout,
+                  const std::vector<double>       &wave_modulus_of_body,
+                  const double                     t,
+                  const double                     dt);
+
+    /// Statistics columns: "wall_force_x", ...
+    std::vector<std::string>
+    columns() const;
+
+    /// The mean force of the material on the wall since the last call,
+    /// summed over ranks (collective), and restart the averaging.
+    std::vector<double>
+    mean_force_since_last_call(const double time, MPI_Comm comm);
+
+  private:
+    const RigidWallParameters<dim> prm;
+    const double                   h;
+    ReactionMeter<dim>             meter;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,204 @@
+#include <mpm/boundary_conditions/rigid_wall.h>
+#include <mpm/parameters.h>
+
+#include <cmath>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  RigidWallParameters<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.enter_subsection("Rigid wall");
+    prm.declare_entry("enabled",
+                      "false",
+                      Patterns::Bool(),
+                      "true or false: a rigid plane at any angle to the "
+                      "grid, acting on the material points by a penalty "
+                      "with Coulomb friction; its mean force from the "
+                      "material is written to statistics.csv (wall_force_x, "
+                      "...).");
+    prm.declare_entry("point",
+                      "0",
+                      Patterns::Anything(),
+                      "A point of the plane at t = 0, one value per "
+                      "dimension.");
+    prm.declare_entry("normal",
+                      "0, 1, 0",
+                      Patterns::Anything(),
+                      "Normal of the plane, pointing to the side where the "
+                      "material is; any non-zero length. 2D reads the first "
+                      "two values.");
+    prm.declare_entry("velocity",
+                      "0",
+                      Patterns::Anything(),
+                      "Velocity of the plane in m/s (a moving wall).");
+    prm.declare_entry("friction coefficient",
+                      "0",
+                      Patterns::Anything(),
+                      "Coulomb coefficient mu >= 0 between wall and "
+                      "material.");
+    prm.declare_entry("penalty factor",
+                      "1",
+                      Patterns::Anything(),
+                      "Contact stiffness kappa in (0, 4]: a point overlapping "
+                      "the wall by delta is pushed back by kappa M "
+                      "l^(dim-1) delta / h (M: p-wave modulus, l: point "
+                      "size, h: cell size). Up to 4 keeps the contact "
+                      "stable at the CFL step; larger is stiffer.");
+    prm.declare_entry("damping ratio",
+                      "0.5",
+                      Patterns::Anything(),
+                      "Normal damping of the contact as a fraction of "
+                      "critical, in [0, 1]: 0 bounces, 1 absorbs.");
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  RigidWallParameters<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    const std::string path = "Boundary conditions/Rigid wall";
+    prm.enter_subsection("Boundary conditions");
+    prm.enter_subsection("Rigid wall");
+    enabled = prm.get_bool("enabled");
+    if (enabled)
+      {
+        point = Parse::point<dim>(prm, path, "point");
+        // The normal may be given with 3 components in any dimension.
+        const auto values = Utilities::split_string_list(prm.get("normal"));
+        if (values.size() < dim)
+          throw InputError(path + "/normal",
+                           prm.get("normal"),
+                           "expects at least " + std::to_string(dim) +
+                             " comma-separated values");
+        for (unsigned int d = 0; d < dim; ++d)
+          try
+            {
+              normal[d] = Utilities::string_to_double(values[d]);
+            }
+          catch (...)
+            {
+              throw InputError(path + "/normal",
+                               prm.get("normal"),
+                               "must be numbers");
+            }
+        if (!(normal.norm() > 0) || !std::isfinite(normal.norm()))
+          throw InputError(path + "/normal",
+                           prm.get("normal"),
+                           "must be a non-zero, finite vector");
+        normal /= normal.norm();
+        velocity = Parse::vector<dim>(prm, path, "velocity");
+        friction_coefficient =
+          Parse::bounded_double(prm, path, "friction coefficient", 0, 1e300);
+        penalty =
+          Parse::bounded_double(prm, path, "penalty factor", 0, 4, true, false);
+        damping_ratio = Parse::bounded_double(prm, path, "damping ratio", 0, 1);
+      }
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  RigidWall<dim>::RigidWall(const RigidWallParameters<dim> &parameters,
+                            const double                    cell_size)
+    : prm(parameters)
+    , h(cell_size)
+  {
+  }
+
+
+  template <int dim>
+  void
+  RigidWall<dim>::act_on_points(Particles::ParticleHandler<dim> &points,
+                                const FieldLayout               &l,
+                                const std::vector<double> &wave_modulus_of_body,
+                                const double               t,
+                                const double               dt)
+  {
+    const Tensor<1, dim> &n        = prm.normal;
+    const Point<dim>      position = prm.point + t * prm.velocity;
+    const double          mu       = prm.friction_coefficient;
+    Tensor<1, dim>        reaction;
+    for (auto &p : points)
+      {
+        double      *q       = p.get_properties().data();
+        double      *force   = q + l.wall_force;
+        double      *spring  = q + l.wall_slip;
+        const double overlap = -((p.get_location() - position) * n);
+        if (!(overlap > 0))
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              force[d] = spring[d] = 0;
+            continue;
+          }
+        const double m    = q[l.mass];
+        const double size = std::pow(q[l.volume], 1. / dim);
+        const double k    = prm.penalty * wave_modulus_of_body[q[l.body]] *
+                         std::pow(size, dim - 1.) / h; // N/m per point
+        const Tensor<1, dim> relative =
+          Fields::vector<dim>(q + l.velocity) - prm.velocity;
+        const double approach = relative * n; // < 0: moving into it
+        // A contact pushes, never pulls.
+        const double damping = 2 * prm.damping_ratio * std::sqrt(k * m);
+        const double normal_force =
+          std::max(0., k * overlap - damping * approach);
+        Tensor<1, dim> f = normal_force * n;
+
+        // Stick spring on the tangential displacement, in the plane.
+        Tensor<1, dim> u = Fields::vector<dim>(spring) + dt * relative;
+        u -= (u * n) * n;
+        // Damped like the normal direction, so that a stuck body does not
+        // rock on its springs.
+        Tensor<1, dim> friction = -k * u - damping * (relative - approach * n);
+        if (friction.norm() > mu * normal_force)
+          {
+            // Sliding: the Coulomb force, and the spring that carries it.
+            friction *= mu * normal_force / friction.norm();
+            u = -friction / k;
+          }
+        f += friction;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            force[d]  = f[d];
+            spring[d] = u[d];
+          }
+        reaction -= dt * f;
+      }
+    meter.add(reaction);
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  RigidWall<dim>::columns() const
+  {
+    std::vector<std::string> c;
+    if (prm.enabled)
+      for (unsigned int d = 0; d < dim; ++d)
+        c.push_back(std::string("wall_force_") + "xyz"[d]);
+    return c;
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  RigidWall<dim>::mean_force_since_last_call(const double time, MPI_Comm comm)
+  {
+    if (!prm.enabled)
+      return {};
+    return meter.mean_since_last_call(time, comm);
+  }
+
+
+  template struct RigidWallParameters<1>;
+  template struct RigidWallParameters<2>;
+  template struct RigidWallParameters<3>;
+  template class RigidWall<1>;
+  template class RigidWall<2>;
+  template class RigidWall<3>;
+} // namespace mpm
