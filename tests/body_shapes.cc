@@ -15,29 +15,14 @@
 #include <iostream>
 #include <numeric>
 
+#include "checks.h"
+
 using namespace dealii;
 using namespace mpm;
 
 namespace
 {
-  bool all_ok = true;
-
-  void
-  check(const std::string &what, const double value, const double bound)
-  {
-    const bool ok = std::abs(value) <= bound;
-    std::cout << (ok ? "  ok   " : "  FAIL ") << what << ": " << value
-              << " (bound " << bound << ")" << std::endl;
-    all_ok = all_ok && ok;
-  }
-
-
-  void
-  check_true(const std::string &what, const bool value)
-  {
-    std::cout << (value ? "  ok   " : "  FAIL ") << what << std::endl;
-    all_ok = all_ok && value;
-  }
+  using namespace checks;
 
 
   template <int dim>

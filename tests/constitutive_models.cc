@@ -19,21 +19,14 @@
 #include <iostream>
 #include <random>
 
+#include "checks.h"
+
 using namespace dealii;
 using namespace mpm;
 
 namespace
 {
-  bool all_ok = true;
-
-  void
-  check(const std::string &what, const double value, const double bound)
-  {
-    const bool ok = std::abs(value) <= bound;
-    std::cout << (ok ? "  ok   " : "  FAIL ") << what << ": " << value
-              << " (bound " << bound << ")" << std::endl;
-    all_ok = all_ok && ok;
-  }
+  using namespace checks;
 
 
   /// One material point of model @p name with parameters @p settings.

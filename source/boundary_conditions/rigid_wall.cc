@@ -177,11 +177,8 @@ namespace mpm
   std::vector<std::string>
   RigidWall<dim>::columns() const
   {
-    std::vector<std::string> c;
-    if (prm.enabled)
-      for (unsigned int d = 0; d < dim; ++d)
-        c.push_back(std::string("wall_force_") + "xyz"[d]);
-    return c;
+    return prm.enabled ? ReactionMeter<dim>::columns("wall_force")
+                       : std::vector<std::string>();
   }
 
 

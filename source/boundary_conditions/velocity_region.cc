@@ -134,11 +134,8 @@ namespace mpm
   std::vector<std::string>
   VelocityRegion<dim>::columns() const
   {
-    std::vector<std::string> c;
-    if (prm.enabled)
-      for (unsigned int d = 0; d < dim; ++d)
-        c.push_back(std::string("region_force_") + "xyz"[d]);
-    return c;
+    return prm.enabled ? ReactionMeter<dim>::columns("region_force")
+                       : std::vector<std::string>();
   }
 
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
 
+#include <string>
 #include <vector>
 
 namespace mpm
@@ -20,6 +21,16 @@ namespace mpm
   class ReactionMeter
   {
   public:
+    /// Statistics columns "<prefix>_x", ...
+    static std::vector<std::string>
+    columns(const std::string &prefix)
+    {
+      std::vector<std::string> c;
+      for (unsigned int d = 0; d < dim; ++d)
+        c.push_back(prefix + "_" + "xyz"[d]);
+      return c;
+    }
+
     void
     add(const Tensor<1, dim> &impulse)
     {

@@ -45,11 +45,11 @@ namespace mpm
    * the body's p-wave modulus, h the cell size), damped in
    * the normal direction at a fraction of critical. Friction is a stick
    * spring of the same stiffness and damping on the tangential
-   * displacement since the point touched (Cundall and Strack's contact), limited to mu f_n: beyond
-   * it the point slides and the spring holds the Coulomb force. A bare
-   * Coulomb force cannot hold a body at rest (it reverses the velocity it
-   * stops), and capping it at the point's momentum lets a block creep.
-   * With kappa = 1 the contact's frequency stays below the CFL step's
+   * displacement since the point touched (Cundall and Strack's contact),
+   * limited to mu f_n: beyond it the point slides and the spring holds the
+   * Coulomb force. A bare Coulomb force cannot hold a body at rest (it reverses
+   * the velocity it stops), and capping it at the point's momentum lets a block
+   * creep. With kappa = 1 the contact's frequency stays below the CFL step's
    * limit (omega dt <= CFL sqrt(2 kappa) < 2). The forces join the points'
    * external forces, so every basis and scheme sees the wall; their
    * reaction, summed between outputs, is the wall's mean force.
