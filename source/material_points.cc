@@ -20,7 +20,7 @@ namespace mpm
             const std::string      &path,
             const std::string      &entry)
     {
-      const std::string       text = prm.get(entry);
+      const std::string      text = prm.get(entry);
       std::set<unsigned int> ids;
       for (const auto &item : Utilities::split_string_list(text, ','))
         {
