@@ -313,3 +313,10 @@ add_test(NAME inclined_plane_rigid_wall
 mpm_test(bad_wall_normal PRM ../benchmarks/contact/inclined_plane.prm EXIT 1
   ARGS -s "Boundary conditions/Rigid wall/normal=0, 0"
   ERROR "parameter 'Boundary conditions/Rigid wall/normal' = '0, 0': must be a non-zero, finite vector")
+#    The rigid wall's history (the lattice-filled block dropping onto the
+#    plane and sliding), and 2 ranks reproduce it (wall force summed over
+#    ranks).
+set(wall ARGS -s "Simulation/end time=0.2" -s "Output/interval=0.05")
+mpm_test(rigid_wall PRM ../benchmarks/contact/inclined_plane.prm ${wall})
+mpm_test(rigid_wall_mpi2 PRM ../benchmarks/contact/inclined_plane.prm NP 2
+  REFERENCE rigid_wall.output RELTOL 1e-7 ${wall})
