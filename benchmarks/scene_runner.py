@@ -16,6 +16,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 Result = namedtuple("Result", "rows timing points returncode stderr")
 
 
+def cost(result):
+    """Wall seconds of the run and ns per particle-step of its steps."""
+    return float(result.rows[-1]["wall_seconds"]), \
+        float(result.timing["steps"]["ns_per_particle_step"])
+
+
 def run_scene(exe, scene, overrides=(), frame=None, fields="J", check=True):
     """@p scene is relative to benchmarks/; a failed run raises unless
     @p check is False (then returncode and stderr say why)."""

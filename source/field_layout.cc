@@ -30,11 +30,10 @@ namespace mpm
       l.plastic_strain = add("plastic strain", 1);
     if (requests.surface_area)
       l.surface_area = add("surface area", dim);
-    if (requests.wall_contact)
-      {
-        l.wall_force = add("wall force", dim);
-        l.wall_slip  = add("wall slip", dim);
-      }
+    if (requests.wall_force)
+      l.wall_force = add("wall force", dim);
+    if (requests.wall_slip)
+      l.wall_slip = add("wall slip", dim);
     return l;
   }
 

@@ -261,12 +261,10 @@ namespace mpm
       throw InputError(name + "/mesh file",
                        "",
                        "shape 'mesh' needs the name of a mesh file");
-    const auto         material_ids = id_list(prm, name, "mesh material ids");
-    const auto         loaded_ids = id_list(prm, name, "pressure boundary ids");
-    const unsigned int n          = Parse::bounded_double(
-      prm, name, "particles per cell", 1, 10); // checked again below
-    MeshSeeds<dim> read =
-      seeds_from_mesh<dim>(file, material_ids, loaded_ids, n, name);
+    const auto     material_ids = id_list(prm, name, "mesh material ids");
+    const auto     loaded_ids   = id_list(prm, name, "pressure boundary ids");
+    MeshSeeds<dim> read         = seeds_from_mesh<dim>(
+      file, material_ids, loaded_ids, particles_per_cell, name);
 
     // Sort by grid cell; drop (clip) or refuse the points outside the grid.
     std::vector<unsigned int> order, cells(read.positions.size());

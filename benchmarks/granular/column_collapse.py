@@ -21,7 +21,7 @@ the experiments (--scatter, 20 % by default).
 import argparse, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+from scene_runner import cost, overrides, run_scene, sweep_arguments  # noqa: E402
 L0 = 0.2
 
 
@@ -45,14 +45,13 @@ def run(exe, a, n, end_time, extra):
         "-s", "Grid/cells=%d, %d" % (nx, ny),
         "-s", "Bodies/Body 0/upper corner=%.17g, %.17g" % (L0, a * L0),
         "-s", "Output/interval=%g" % (end_time / 20)] + extra)
-    rows, timing = r.rows, r.timing
+    rows = r.rows
     spacing = h / 2  # 2 points per cell and direction
     front = float(rows[-1]["body0_x_max"]) + spacing / 2
     potential = float(rows[0]["gravitational_energy"]) - \
         float(rows[-1]["gravitational_energy"])
     rest = float(rows[-1]["kinetic_energy"]) / max(potential, 1e-300)
-    return (front - L0) / L0, rest, float(rows[-1]["wall_seconds"]), \
-        float(timing["steps"]["ns_per_particle_step"])
+    return ((front - L0) / L0, rest) + cost(r)
 
 
 def main():

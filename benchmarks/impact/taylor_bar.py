@@ -17,7 +17,7 @@ final length 21.4-21.6 mm, footprint radius about 7.0 mm.
 import argparse, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+from scene_runner import cost, overrides, run_scene, sweep_arguments  # noqa: E402
 
 R0, L0 = 3.2e-3, 32.4e-3
 LENGTH = (21.4, 21.6)  # mm
@@ -31,15 +31,14 @@ def run(exe, n, extra):
     r = run_scene(exe, "impact/taylor_bar.prm", [
         "-s", "Grid/upper corner=%.17g, %.17g, %.17g" % (nx * h, ny * h, nx * h),
         "-s", "Grid/cells=%d, %d, %d" % (nx, ny, nx)] + extra)
-    rows, timing = r.rows, r.timing
+    rows = r.rows
     half_spacing = h / 4  # 2 points per cell and direction
     last = rows[-1]
     length = (float(last["body0_y_max"]) + half_spacing) * 1e3
     footprint = (max(float(last["body0_x_max"]), float(last["body0_z_max"]))
                  + half_spacing) * 1e3
     kinetic = float(last["kinetic_energy"]) / float(rows[0]["kinetic_energy"])
-    return h, length, footprint, kinetic, float(last["wall_seconds"]), \
-        float(timing["steps"]["ns_per_particle_step"])
+    return (h, length, footprint, kinetic) + cost(r)
 
 
 def main():

@@ -14,7 +14,7 @@ Prandtl's 2 + pi, and the wall time.
 import argparse, math, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import run_scene  # noqa: E402
+from scene_runner import cost, run_scene  # noqa: E402
 
 PRANDTL = 2 + math.pi
 
@@ -25,11 +25,10 @@ def run(exe, per_half_width, end_time):
     r = run_scene(exe, "plasticity/strip_footing.prm", [
         "-s", "Grid/cells=%d,%d" % (10 * n, 7 * n),
         "-s", "Simulation/end time=%g" % end_time], fields="plastic strain")
-    rows, timing = r.rows, r.timing
+    rows = r.rows
     c, half_width = 1e4, 0.5
-    q = [-float(r["region_force_y"]) / half_width / c for r in rows]
-    return max(q), float(rows[-1]["wall_seconds"]), \
-        float(timing["steps"]["ns_per_particle_step"])
+    q = [-float(row["region_force_y"]) / half_width / c for row in rows]
+    return (max(q),) + cost(r)
 
 
 def main():

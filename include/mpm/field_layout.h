@@ -70,7 +70,8 @@ namespace mpm
     bool elastic_left_cauchy_green = false;
     bool plastic_strain            = false;
     bool surface_area              = false;
-    bool wall_contact              = false;
+    bool wall_force                = false;
+    bool wall_slip                 = false; ///< only with wall friction
   };
 
 

@@ -124,22 +124,26 @@ namespace mpm
     const Point<dim>      position = prm.point + t * prm.velocity;
     const double          mu       = prm.friction_coefficient;
     Tensor<1, dim>        reaction;
+    const bool friction = l.wall_slip != FieldLayout::absent; // mu > 0
     for (auto &p : points)
       {
         double      *q       = p.get_properties().data();
         double      *force   = q + l.wall_force;
-        double      *spring  = q + l.wall_slip;
         const double overlap = -((p.get_location() - position) * n);
         if (!(overlap > 0))
           {
             for (unsigned int d = 0; d < dim; ++d)
-              force[d] = spring[d] = 0;
+              force[d] = 0;
+            if (friction)
+              for (unsigned int d = 0; d < dim; ++d)
+                q[l.wall_slip + d] = 0;
             continue;
           }
-        const double m    = q[l.mass];
-        const double size = std::pow(q[l.volume], 1. / dim);
-        const double k    = prm.penalty * wave_modulus_of_body[q[l.body]] *
-                         std::pow(size, dim - 1.) / h; // N/m per point
+        // Contact area l^(dim-1) of a point of size l = V^(1/dim).
+        const double m = q[l.mass];
+        const double k = prm.penalty * wave_modulus_of_body[q[l.body]] *
+                         std::pow(q[l.volume], (dim - 1.) / dim) /
+                         h; // N/m per point
         const Tensor<1, dim> relative =
           Fields::vector<dim>(q + l.velocity) - prm.velocity;
         const double approach = relative * n; // < 0: moving into it
@@ -149,24 +153,27 @@ namespace mpm
           std::max(0., k * overlap - damping * approach);
         Tensor<1, dim> f = normal_force * n;
 
-        // Stick spring on the tangential displacement, in the plane.
-        Tensor<1, dim> u = Fields::vector<dim>(spring) + dt * relative;
-        u -= (u * n) * n;
-        // Damped like the normal direction, so that a stuck body does not
-        // rock on its springs.
-        Tensor<1, dim> friction = -k * u - damping * (relative - approach * n);
-        if (friction.norm() > mu * normal_force)
+        if (friction)
           {
-            // Sliding: the Coulomb force, and the spring that carries it.
-            friction *= mu * normal_force / friction.norm();
-            u = -friction / k;
+            // Stick spring on the tangential displacement, in the plane,
+            // damped like the normal direction so that a stuck body does
+            // not rock on its springs.
+            const Tensor<1, dim> slip = relative - approach * n;
+            Tensor<1, dim> u = Fields::vector<dim>(q + l.wall_slip) + dt * slip;
+            u -= (u * n) * n;
+            Tensor<1, dim> tangential = -k * u - damping * slip;
+            if (tangential.norm() > mu * normal_force)
+              {
+                // Sliding: the Coulomb force, and the spring that carries it.
+                tangential *= mu * normal_force / tangential.norm();
+                u = -tangential / k;
+              }
+            f += tangential;
+            for (unsigned int d = 0; d < dim; ++d)
+              q[l.wall_slip + d] = u[d];
           }
-        f += friction;
         for (unsigned int d = 0; d < dim; ++d)
-          {
-            force[d]  = f[d];
-            spring[d] = u[d];
-          }
+          force[d] = f[d];
         reaction -= dt * f;
       }
     meter.add(reaction);
