@@ -30,8 +30,8 @@ namespace mpm
       l.plastic_strain = add("plastic strain", 1);
     if (requests.surface_area)
       l.surface_area = add("surface area", dim);
-    if (requests.wall_force)
-      l.wall_force = add("wall force", dim);
+    if (requests.point_load)
+      l.point_load = add("point load", dim);
     if (requests.wall_slip)
       l.wall_slip = add("wall slip", dim);
     return l;

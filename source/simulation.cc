@@ -89,7 +89,7 @@ namespace mpm
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
     for (const auto &body : body_parameters)
       fields.surface_area = fields.surface_area || body.pressure;
-    fields.wall_force = rigid_wall_parameters.enabled;
+    fields.point_load = fields.surface_area || rigid_wall_parameters.enabled;
     fields.wall_slip  = rigid_wall_parameters.enabled &&
                        rigid_wall_parameters.friction_coefficient > 0;
     points = std::make_unique<MaterialPoints<dim>>(*grid,

@@ -237,7 +237,6 @@ namespace mpm
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
         body_forces.push_back(body.body_force.get());
         pressures.push_back(body.pressure.get());
-        has_pressures   = has_pressures || body.pressure;
         has_body_forces = has_body_forces || body.body_force;
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
@@ -328,9 +327,8 @@ namespace mpm
   void
   TimeIntegrator<dim>::advance(const Basis &basis, const double dt)
   {
-    if (rigid_wall)
-      rigid_wall->act_on_points(
-        points.handler(), points.layout(), wave_modulus_of_body, t, dt);
+    if (points.layout().point_load != FieldLayout::absent)
+      make_point_loads(dt);
     switch (prm.scheme)
       {
         case UpdateScheme::USL:
@@ -447,13 +445,14 @@ namespace mpm
     const FieldLayout   &l       = points.layout();
     const Tensor<1, dim> gravity = prm.gravity;
     const bool           apic    = prm.transfer == Transfer::apic;
+    // Local copies: the compiler cannot tell that the members do not change
+    // while the loop writes the nodal sums through a double *.
+    const bool with_body_forces = has_body_forces;
+    const bool with_point_loads = l.point_load != FieldLayout::absent;
     for (auto *f : body_forces)
       if (f != nullptr)
         f->set_time(t);
-    for (auto *f : pressures)
-      if (f != nullptr)
-        f->set_time(t);
-    for_each_point(basis, [&](auto &point, const double *q, const auto &s) {
+    for_each_point(basis, [&](auto &, const double *q, const auto &s) {
       const double m = q[l.mass];
       if (mass_and_momentum)
         {
@@ -478,11 +477,9 @@ namespace mpm
           const SymmetricTensor<2, dim> Vsigma =
             q[l.volume] * Fields::symmetric<dim>(q + l.stress);
           Tensor<1, dim> mg =
-            m * (has_body_forces ? gravity + body_force(q) : gravity);
-          if (has_pressures)
-            mg += pressure_force(q, point->get_location());
-          if (rigid_wall)
-            mg += Fields::vector<dim>(q + l.wall_force);
+            m * (with_body_forces ? gravity + body_force(q) : gravity);
+          if (with_point_loads)
+            mg += Fields::vector<dim>(q + l.point_load);
           for (unsigned int v = 0; v < Basis::n_nodes; ++v)
             {
               const Tensor<1, dim> f =
@@ -498,19 +495,33 @@ namespace mpm
 
 
   template <int dim>
-  inline Tensor<1, dim>
-  TimeIntegrator<dim>::pressure_force(const double     *q,
-                                      const Point<dim> &x) const
+  void
+  TimeIntegrator<dim>::make_point_loads(const double dt)
   {
     const FieldLayout &l = points.layout();
-    if (FunctionParser<dim> *p = pressures[q[l.body]])
+    for (auto *f : pressures)
+      if (f != nullptr)
+        f->set_time(t);
+    for (auto &p : points.handler())
       {
-        const Tensor<1, dim> area = Fields::vector<dim>(q + l.surface_area);
+        double *q = p.get_properties().data();
+        for (unsigned int d = 0; d < dim; ++d)
+          q[l.point_load + d] = 0;
         // Most points of a loaded body lie inside it: skip the parser.
-        if (area.norm_square() > 0)
-          return -p->value(x) * area;
+        if (FunctionParser<dim> *pressure = pressures[q[l.body]])
+          {
+            const Tensor<1, dim> area = Fields::vector<dim>(q + l.surface_area);
+            if (area.norm_square() > 0)
+              {
+                const double value = pressure->value(p.get_location());
+                for (unsigned int d = 0; d < dim; ++d)
+                  q[l.point_load + d] -= value * area[d];
+              }
+          }
       }
-    return Tensor<1, dim>();
+    if (rigid_wall)
+      rigid_wall->act_on_points(
+        points.handler(), l, wave_modulus_of_body, t, dt);
   }
 
 

@@ -41,9 +41,12 @@ namespace mpm
     /// dim: the outward area vector N dA of the loaded surface a point of
     /// a pressure-loaded body carries (zero inside the body).
     unsigned int surface_area = absent;
-    /// dim each: a rigid wall's force on the point this step, and the
-    /// elastic tangential displacement of its contact (stick spring).
-    unsigned int wall_force   = absent;
+    /// dim: the loads on the point this step besides body forces (a rigid
+    /// wall's contact force, a pressure on a loaded face), made before the
+    /// scatter so that it adds one vector.
+    unsigned int point_load = absent;
+    /// dim: the elastic tangential displacement of a wall contact (stick
+    /// spring).
     unsigned int wall_slip    = absent;
     unsigned int n_properties = 0;
 
@@ -70,7 +73,7 @@ namespace mpm
     bool elastic_left_cauchy_green = false;
     bool plastic_strain            = false;
     bool surface_area              = false;
-    bool wall_force                = false;
+    bool point_load                = false;
     bool wall_slip                 = false; ///< only with wall friction
   };
 

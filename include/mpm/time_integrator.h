@@ -196,9 +196,12 @@ namespace mpm
     /// Body force per unit mass b(X, t) of a point (without gravity).
     Tensor<1, dim>
     body_force(const double *q) const;
-    /// The pressure load a point of a loaded body carries, at @p x.
-    Tensor<1, dim>
-    pressure_force(const double *q, const Point<dim> &x) const;
+    /// Fill each point's 'point load' field for the coming step: the
+    /// pressure on loaded mesh faces at the point's position and the rigid
+    /// wall's contact force. A pass of its own, only in scenes with such
+    /// loads, so that the scatter adds one vector and needs no position.
+    void
+    make_point_loads(const double dt);
     /// L at a point from the nodal velocities in @p slot (small-mass guard).
     template <typename Stencil>
     Tensor<2, dim>
@@ -226,7 +229,6 @@ namespace mpm
     std::vector<double>                        wave_modulus_of_body;
     /// Each body's pressure on its loaded faces (null: none).
     std::vector<FunctionParser<dim> *> pressures;
-    bool                               has_pressures = false;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
     std::vector<double> fixed_inverse_density_of_body;
     /// uGIMP/cpGIMP: initial domain half-width of each body's points, in

@@ -128,12 +128,10 @@ namespace mpm
     for (auto &p : points)
       {
         double      *q       = p.get_properties().data();
-        double      *force   = q + l.wall_force;
+        double      *load    = q + l.point_load;
         const double overlap = -((p.get_location() - position) * n);
         if (!(overlap > 0))
           {
-            for (unsigned int d = 0; d < dim; ++d)
-              force[d] = 0;
             if (friction)
               for (unsigned int d = 0; d < dim; ++d)
                 q[l.wall_slip + d] = 0;
@@ -173,7 +171,7 @@ namespace mpm
               q[l.wall_slip + d] = u[d];
           }
         for (unsigned int d = 0; d < dim; ++d)
-          force[d] = f[d];
+          load[d] += f[d];
         reaction -= dt * f;
       }
     meter.add(reaction);

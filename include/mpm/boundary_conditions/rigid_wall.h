@@ -74,8 +74,8 @@ namespace mpm
     }
 
     /**
-     * Place the wall at time @p t and store, in each point's 'wall force'
-     * field, the wall's force on it over the step @p dt (zero if not in
+     * Place the wall at time @p t and add, to each point's 'point load'
+     * field, the wall's force on it over the step @p dt (nothing if not in
      * contact), updating its stick spring; the reaction joins the wall's
      * impulse. @p wave_modulus_of_body gives M per body.
      */
