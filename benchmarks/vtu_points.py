@@ -4,6 +4,7 @@ headers) without VTK. Used by the benchmark scripts.
 
     from vtu_points import read_points
     xyz = read_points("output/particles_00015.pvtu")   # list of (x, y, z)
+    s = read_field("output/particles_00015.pvtu", "stress")  # tuples
 """
 import base64, os, re, struct, zlib
 
@@ -27,21 +28,47 @@ def _decode(text):
     return out
 
 
+def _tuples(kind, text, n_components):
+    raw = _decode(text)
+    fmt, size = ("f", 4) if kind == "Float32" else ("d", 8)
+    values = struct.unpack("<%d%s" % (len(raw) // size, fmt), raw)
+    return [values[i:i + n_components]
+            for i in range(0, len(values), n_components)]
+
+
 def read_vtu_points(path):
     xml = open(path).read()
     m = re.search(r"<Points>\s*<DataArray[^>]*type=\"(Float32|Float64)\"[^>]*>"
                   r"(.*?)</DataArray>", xml, re.S)
-    kind, text = m.group(1), m.group(2)
-    raw = _decode(text)
-    fmt, size = ("f", 4) if kind == "Float32" else ("d", 8)
-    values = struct.unpack("<%d%s" % (len(raw) // size, fmt), raw)
-    return [values[i:i + 3] for i in range(0, len(values), 3)]
+    return _tuples(m.group(1), m.group(2), 3)
+
+
+def read_vtu_field(path, name):
+    xml = open(path).read()
+    m = re.search(r"<DataArray type=\"(Float32|Float64)\" Name=\"%s\""
+                  r"(?: NumberOfComponents=\"(\d+)\")?[^>]*>(.*?)</DataArray>"
+                  % re.escape(name), xml, re.S)
+    if m is None:
+        raise KeyError("no field '%s' in %s" % (name, path))
+    return _tuples(m.group(1), m.group(3), int(m.group(2) or 1))
+
+
+def _pieces(pvtu):
+    directory = os.path.dirname(pvtu)
+    return [os.path.join(directory, piece) for piece in
+            re.findall(r"<Piece\s+Source=\"([^\"]+)\"", open(pvtu).read())]
 
 
 def read_points(pvtu):
-    directory = os.path.dirname(pvtu)
-    pieces = re.findall(r"<Piece\s+Source=\"([^\"]+)\"", open(pvtu).read())
     points = []
-    for piece in pieces:
-        points += read_vtu_points(os.path.join(directory, piece))
+    for piece in _pieces(pvtu):
+        points += read_vtu_points(piece)
     return points
+
+
+def read_field(pvtu, name):
+    """The values of point field @p name, in the order of read_points."""
+    values = []
+    for piece in _pieces(pvtu):
+        values += read_vtu_field(piece, name)
+    return values

@@ -29,7 +29,11 @@ namespace mpm
     if (requests.plastic_strain)
       l.plastic_strain = add("plastic strain", 1);
     if (requests.surface_area)
-      l.surface_area = add("surface area", dim);
+      {
+        l.surface_area   = add("surface area", dim);
+        l.surface_offset = add("surface offset", dim);
+        l.load_moment    = add("load moment", dim * dim);
+      }
     if (requests.point_load)
       l.point_load = add("point load", dim);
     if (requests.wall_slip)

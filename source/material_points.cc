@@ -84,14 +84,34 @@ namespace mpm
       "separated; empty: none). Each face's area goes to the nearest "
       "points of its cell, which carry the load from then on.");
     prm.declare_entry(
+      "loaded surface",
+      "",
+      Patterns::Anything(),
+      "Shape: the points that carry 'pressure' and 'traction': a face of the "
+      "body's bounding box, 'x min', 'x max', 'y min', 'y max', 'z min' or "
+      "'z max' (the outer layer of points there, each carrying its share of "
+      "the face's area), or an expression in x, y, z that is > 0 on the "
+      "points to load (each carrying the area V^((dim-1)/dim); traction "
+      "only, as it gives no normal). Empty: none. A mesh body names its "
+      "loaded faces in 'pressure boundary ids'.");
+    prm.declare_entry(
       "pressure",
       "0",
       Patterns::Anything(),
-      "Mesh: pressure in Pa on the faces of 'pressure boundary ids', "
-      "positive pushing on the body: an expression in x, y, z (current "
-      "position of the loaded point) and t, e.g. a ramp 'p0*t/T'. A dead "
-      "load: it keeps the direction and area of the faces at t = 0, right "
-      "while the surface turns and stretches little.");
+      "Pressure in Pa on the loaded surface ('pressure boundary ids' or "
+      "'loaded surface'), positive pushing on the body: an expression in x, "
+      "y, z (current position of the loaded point) and t, e.g. a ramp "
+      "'p0*t/T'. A dead load: it keeps the direction and area of the "
+      "surface at t = 0, right while the surface turns and stretches "
+      "little.");
+    prm.declare_entry(
+      "traction",
+      "0",
+      Patterns::Anything(),
+      "Traction (force per area, Pa) on the loaded surface: one expression "
+      "per component separated by ';' (or one for all), in x, y, z (current "
+      "position of the loaded point) and t; applied at the points (seed "
+      "001), on the area of t = 0 (a dead load).");
     prm.declare_entry("clip to grid",
                       "false",
                       Patterns::Bool(),
@@ -180,18 +200,7 @@ namespace mpm
       parse_mesh(prm);
     else
       parse_shape(prm);
-    if (mesh_seeds && !mesh_seeds->areas.empty())
-      pressure = Parse::vector_function<dim>({prm.get("pressure")},
-                                             constants,
-                                             name + "/pressure");
-    else if (!Parse::is_zero({prm.get("pressure")}))
-      throw InputError(name + "/pressure",
-                       prm.get("pressure"),
-                       "needs a mesh body with 'pressure boundary ids'");
-    else if (!mesh_seeds && !prm.get("pressure boundary ids").empty())
-      throw InputError(name + "/pressure boundary ids",
-                       prm.get("pressure boundary ids"),
-                       "are faces of a mesh: needs shape 'mesh'");
+    parse_surface_loads(prm);
     density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
     initial_velocity =
       Parse::expression_list(prm, "initial velocity", dim, name);
@@ -249,6 +258,108 @@ namespace mpm
                          "the body must lie inside the grid box (or set "
                          "'clip to grid' to keep the part inside)");
       }
+  }
+
+
+  template <int dim>
+  void
+  BodyParameters<dim>::parse_surface_loads(const ParameterHandler &prm)
+  {
+    const std::string surface  = prm.get("loaded surface");
+    loaded_surface             = surface;
+    const std::string ids      = prm.get("pressure boundary ids");
+    bool              has_normal = false;
+    if (mesh_seeds)
+      {
+        if (!surface.empty())
+          throw InputError(name + "/loaded surface",
+                           surface,
+                           "is for shapes: a mesh body names its loaded "
+                           "faces in 'pressure boundary ids'");
+        has_normal = !mesh_seeds->areas.empty();
+      }
+    else
+      {
+        if (!ids.empty())
+          throw InputError(name + "/pressure boundary ids",
+                           ids,
+                           "are faces of a mesh: needs shape 'mesh' (a "
+                           "shape names its loaded surface in 'loaded "
+                           "surface')");
+        const std::vector<std::string> faces = {
+          "x min", "x max", "y min", "y max", "z min", "z max"};
+        const auto face = std::find(faces.begin(), faces.end(), surface);
+        if (face != faces.end())
+          {
+            loaded_face = face - faces.begin();
+            if (loaded_face >= 2 * dim)
+              throw InputError(name + "/loaded surface",
+                               surface,
+                               "names an axis this " + std::to_string(dim) +
+                                 "D scene does not have");
+            has_normal = true;
+          }
+        else if (!surface.empty())
+          loaded_points = Parse::vector_function<dim>({surface},
+                                                      constants,
+                                                      name +
+                                                        "/loaded surface");
+      }
+    const bool has_surface = has_normal || loaded_points;
+
+    const std::string p = prm.get("pressure");
+    if (!Parse::is_zero({p}))
+      {
+        if (!has_normal)
+          throw InputError(name + "/pressure",
+                           p,
+                           has_surface ?
+                             "needs a surface with a normal: a face of the "
+                             "bounding box ('y max', ...) or a mesh's "
+                             "'pressure boundary ids'; use 'traction' on "
+                             "points picked by an expression" :
+                             "needs a loaded surface: 'loaded surface' for a "
+                             "shape, 'pressure boundary ids' for a mesh");
+        pressure = Parse::vector_function<dim>({p}, constants, name + "/pressure");
+      }
+    const auto t = Parse::expression_list(prm, "traction", dim, name);
+    if (!Parse::is_zero(t))
+      {
+        if (!has_surface)
+          throw InputError(name + "/traction",
+                           prm.get("traction"),
+                           "needs a loaded surface: 'loaded surface' for a "
+                           "shape, 'pressure boundary ids' for a mesh");
+        traction = Parse::vector_function<dim>(t, constants, name + "/traction");
+      }
+  }
+
+
+  template <int dim>
+  SurfaceShare<dim>
+  BodyParameters<dim>::shape_seed_surface(const Point<dim> &x,
+                                          const double      volume) const
+  {
+    SurfaceShare<dim> s;
+    if (loaded_face != numbers::invalid_unsigned_int)
+      {
+        // The outer layer of the lattice: its points lie half a spacing
+        // inside the face, the next layer one and a half.
+        const unsigned int axis    = loaded_face / 2;
+        const bool         upper   = loaded_face % 2 == 1;
+        const double       spacing = grid.cell_size()[axis] / particles_per_cell;
+        const double depth = upper ? upper_corner[axis] - x[axis] :
+                                     x[axis] - lower_corner[axis];
+        if (depth < spacing)
+          {
+            const double sign = upper ? 1. : -1.;
+            s.area[axis]      = sign * volume / spacing;
+            s.offset[axis]    = sign * depth;
+          }
+      }
+    else if (loaded_points && loaded_points->value(x) > 0)
+      s.area[0] = std::pow(volume, (dim - 1.) / dim);
+    return s;
   }
 
 
@@ -342,8 +453,9 @@ namespace mpm
             visit(x,
                   xi,
                   mesh_seeds->volumes[i],
-                  mesh_seeds->areas.empty() ? Tensor<1, dim>()
-                                            : mesh_seeds->areas[i]);
+                  mesh_seeds->areas.empty() ?
+                    SurfaceShare<dim>() :
+                    SurfaceShare<dim>{mesh_seeds->areas[i], Tensor<1, dim>()});
           }
         return;
       }
@@ -367,7 +479,7 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           x[d] += xi[d] * h[d];
         if (shape->contains(x))
-          visit(x, xi, volume, Tensor<1, dim>());
+          visit(x, xi, volume, shape_seed_surface(x, volume));
       }
   }
 
@@ -442,6 +554,7 @@ namespace mpm
     std::vector<Point<dim>>                            references;
 
     std::vector<types::particle_index> count(body_list.size(), 0);
+    std::vector<double>                loaded_area(body_list.size(), 0.);
     minimum_mass = std::numeric_limits<double>::max();
     for (unsigned int b = 0; b < body_list.size(); ++b)
       {
@@ -477,7 +590,7 @@ namespace mpm
               [&](const Point<dim>     &x,
                   const Point<dim>     &xi,
                   const double          volume,
-                  const Tensor<1, dim> &area) {
+                  const SurfaceShare<dim> &surface) {
                 const double mass = body.density * volume;
                 minimum_mass      = std::min(minimum_mass, mass);
                 std::vector<double> p(l.n_properties, 0.);
@@ -500,8 +613,11 @@ namespace mpm
                   for (unsigned int d = 0; d < dim; ++d)
                     p[l.initial_position + d] = x[d];
                 if (l.surface_area != FieldLayout::absent)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    p[l.surface_area + d] = area[d];
+                  {
+                    Fields::store(surface.area, p.data() + l.surface_area);
+                    Fields::store(surface.offset, p.data() + l.surface_offset);
+                  }
+                loaded_area[b] += surface.area.norm();
                 initialise_state(body, stress.get(), x, p.data());
                 Point<dim> start = x;
                 if (displacement)
@@ -523,6 +639,16 @@ namespace mpm
                          std::to_string(body_list[b].particles_per_cell),
                          "no material point falls inside the body: make it "
                          "larger than a cell or use more points per cell");
+    for (unsigned int b = 0; b < body_list.size(); ++b)
+      if (body_list[b].has_surface_loads() &&
+          Utilities::MPI::sum(loaded_area[b], comm) == 0)
+        throw InputError(body_list[b].name +
+                           (body_list[b].mesh_seeds ? "/pressure boundary ids" :
+                                                      "/loaded surface"),
+                         body_list[b].loaded_surface,
+                         "no material point of the body lies on its loaded "
+                         "surface, so 'pressure' and 'traction' would act on "
+                         "nothing");
 
     // Globally unique ids, numbered rank by rank.
     const types::particle_index n_local = positions.size();

@@ -88,7 +88,7 @@ namespace mpm
       integrator_parameters.basis == BasisType::cpgimp;
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
     for (const auto &body : body_parameters)
-      fields.surface_area = fields.surface_area || body.pressure;
+      fields.surface_area = fields.surface_area || body.has_surface_loads();
     fields.point_load = fields.surface_area || rigid_wall_parameters.enabled;
     fields.wall_slip  = rigid_wall_parameters.enabled &&
                        rigid_wall_parameters.friction_coefficient > 0;

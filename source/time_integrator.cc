@@ -237,6 +237,7 @@ namespace mpm
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
         body_forces.push_back(body.body_force.get());
         pressures.push_back(body.pressure.get());
+        tractions.push_back(body.traction.get());
         has_body_forces = has_body_forces || body.body_force;
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
@@ -448,7 +449,8 @@ namespace mpm
     // Local copies: the compiler cannot tell that the members do not change
     // while the loop writes the nodal sums through a double *.
     const bool with_body_forces = has_body_forces;
-    const bool with_point_loads = l.point_load != FieldLayout::absent;
+    const bool with_point_loads   = l.point_load != FieldLayout::absent;
+    const bool with_surface_loads = l.load_moment != FieldLayout::absent;
     for (auto *f : body_forces)
       if (f != nullptr)
         f->set_time(t);
@@ -480,14 +482,25 @@ namespace mpm
             m * (with_body_forces ? gravity + body_force(q) : gravity);
           if (with_point_loads)
             mg += Fields::vector<dim>(q + l.point_load);
-          for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-            {
-              const Tensor<1, dim> f =
-                s.weights[v] * mg - Vsigma * s.gradients[v];
-              double *node = g + n_sums * s.nodes[v] + force;
-              for (unsigned int d = 0; d < dim; ++d)
-                node[d] += f[d];
-            }
+          auto add_forces = [&](const auto &stress_term) {
+            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+              {
+                const Tensor<1, dim> f =
+                  s.weights[v] * mg - stress_term * s.gradients[v];
+                double *node = g + n_sums * s.nodes[v] + force;
+                for (unsigned int d = 0; d < dim; ++d)
+                  node[d] += f[d];
+              }
+          };
+          // A surface load F acts at the surface, d from the point:
+          // F phi(x + d) = F phi(x) + (F (x) d) grad phi(x) to first order
+          // (exact within a cell for the linear basis), so the moment
+          // F (x) d joins the stress term.
+          if (with_surface_loads)
+            add_forces(Tensor<2, dim>(Vsigma) -
+                       Fields::tensor<dim>(q + l.load_moment));
+          else
+            add_forces(Vsigma);
         }
     });
     grid_sums.compress(VectorOperation::add);
@@ -499,25 +512,34 @@ namespace mpm
   TimeIntegrator<dim>::make_point_loads(const double dt)
   {
     const FieldLayout &l = points.layout();
-    for (auto *f : pressures)
-      if (f != nullptr)
-        f->set_time(t);
+    for (const auto &loads : {pressures, tractions})
+      for (auto *f : loads)
+        if (f != nullptr)
+          f->set_time(t);
     for (auto &p : points.handler())
       {
         double *q = p.get_properties().data();
-        for (unsigned int d = 0; d < dim; ++d)
-          q[l.point_load + d] = 0;
-        // Most points of a loaded body lie inside it: skip the parser.
-        if (FunctionParser<dim> *pressure = pressures[q[l.body]])
-          {
-            const Tensor<1, dim> area = Fields::vector<dim>(q + l.surface_area);
-            if (area.norm_square() > 0)
-              {
-                const double value = pressure->value(p.get_location());
-                for (unsigned int d = 0; d < dim; ++d)
-                  q[l.point_load + d] -= value * area[d];
-              }
-          }
+        Fields::store(Tensor<1, dim>(), q + l.point_load);
+        if (l.surface_area == FieldLayout::absent)
+          continue;
+        Fields::store(Tensor<2, dim>(), q + l.load_moment);
+        const unsigned int b = q[l.body];
+        if (pressures[b] == nullptr && tractions[b] == nullptr)
+          continue;
+        // Most points of a loaded body lie inside it: skip the parsers.
+        const Tensor<1, dim> area = Fields::vector<dim>(q + l.surface_area);
+        if (area.norm_square() == 0)
+          continue;
+        Tensor<1, dim> load;
+        if (pressures[b] != nullptr)
+          load -= pressures[b]->value(p.get_location()) * area;
+        if (tractions[b] != nullptr)
+          for (unsigned int d = 0; d < dim; ++d)
+            load[d] += tractions[b]->value(p.get_location(), d) * area.norm();
+        Fields::store(load, q + l.point_load);
+        Fields::store(outer_product(load,
+                                    Fields::vector<dim>(q + l.surface_offset)),
+                      q + l.load_moment);
       }
     if (rigid_wall)
       rigid_wall->act_on_points(

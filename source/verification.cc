@@ -21,9 +21,10 @@ namespace mpm
                       "with velocity amplitude 'amplitude'; the error is "
                       "|v_com - v0 cos(wt)/(beta L)| / v0, maximum over "
                       "output times. 'self-weight column': body 0 at rest "
-                      "under gravity on a slip floor; the error is the "
-                      "volume-weighted RMS of sigma_yy + rho g (H - y0) "
-                      "over rho g H, at the end. 'displacement': the exact "
+                      "under gravity on a slip floor, with 'top pressure' p0 "
+                      "on its top; the error is the volume-weighted RMS of "
+                      "sigma_yy + p0 + rho g (H - y0) over p0 + rho g H, at "
+                      "the end. 'displacement': the exact "
                       "displacement is 'exact displacement'; the errors are "
                       "sqrt(sum_p V_p |u_p - u(X_p, t)|^2) and max_p "
                       "|u_p - u(X_p, t)|, and for the velocity "
@@ -39,6 +40,12 @@ namespace mpm
                       "0.1",
                       Patterns::Anything(),
                       "Vibrating bar: velocity amplitude v0, > 0.");
+    prm.declare_entry("top pressure",
+                      "0",
+                      Patterns::Anything(),
+                      "Self-weight column: the pressure p0 >= 0 in Pa on "
+                      "the top of the column (load it with 'loaded surface "
+                      "= y max' and 'pressure' or 'traction' in the body).");
     prm.declare_entry("error bound",
                       "0",
                       Patterns::Anything(),
@@ -72,7 +79,8 @@ namespace mpm
     exact_displacement =
       Utilities::split_string_list(prm.get("exact displacement"), ';');
     amplitude   = Parse::bounded_double(prm, s, "amplitude", 0, 1e300, true);
-    error_bound = Parse::bounded_double(prm, s, "error bound", 0, 1e300);
+    top_pressure = Parse::bounded_double(prm, s, "top pressure", 0, 1e300);
+    error_bound  = Parse::bounded_double(prm, s, "error bound", 0, 1e300);
     energy_drift_bound =
       Parse::bounded_double(prm, s, "energy drift bound", 0, 1e300);
     momentum_drift_bound =
@@ -175,7 +183,7 @@ namespace mpm
         return std::abs(mv / m - exact) / prm.amplitude;
       }
 
-    // Self-weight column: uniaxial stress sigma_yy = -rho g (H - y0).
+    // Self-weight column: uniaxial stress sigma_yy = -p0 - rho g (H - y0).
     const unsigned int up     = dim - 1;
     const double       g      = gravity.norm();
     const double       top    = body.upper_corner[up];
@@ -187,14 +195,15 @@ namespace mpm
         if (q[l.body] != 0)
           continue;
         const double y0    = q[l.initial_position + up];
-        const double exact = -body.density * g * (top - y0);
+        const double exact = -prm.top_pressure - body.density * g * (top - y0);
         const double e = Fields::symmetric<dim>(q + l.stress)[up][up] - exact;
         sum += q[l.volume] * e * e;
         volume += q[l.volume];
       }
     sum    = Utilities::MPI::sum(sum, comm);
     volume = Utilities::MPI::sum(volume, comm);
-    return std::sqrt(sum / volume) / (body.density * g * height);
+    return std::sqrt(sum / volume) /
+           (prm.top_pressure + body.density * g * height);
   }
 
 

@@ -41,6 +41,14 @@ namespace mpm
     /// dim: the outward area vector N dA of the loaded surface a point of
     /// a pressure-loaded body carries (zero inside the body).
     unsigned int surface_area = absent;
+    /// dim: where the point's loaded surface lies relative to it, d (half
+    /// a point spacing along the normal on a face of a lattice body, see
+    /// SurfaceShare): the load acts through the basis at x + d, to first
+    /// order phi(x) + d . grad phi(x).
+    unsigned int surface_offset = absent;
+    /// dim*dim: this step's surface load times that offset, load (x) d,
+    /// which the scatter adds to the stress term (see scatter_to_grid).
+    unsigned int load_moment = absent;
     /// dim: the loads on the point this step besides body forces (a rigid
     /// wall's contact force, a pressure on a loaded face), made before the
     /// scatter so that it adds one vector.
@@ -72,7 +80,7 @@ namespace mpm
     bool affine_velocity           = false;
     bool elastic_left_cauchy_green = false;
     bool plastic_strain            = false;
-    bool surface_area              = false;
+    bool surface_area              = false; ///< with offset and moment
     bool point_load                = false;
     bool wall_slip                 = false; ///< only with wall friction
   };

@@ -197,8 +197,8 @@ namespace mpm
     Tensor<1, dim>
     body_force(const double *q) const;
     /// Fill each point's 'point load' field for the coming step: the
-    /// pressure on loaded mesh faces at the point's position and the rigid
-    /// wall's contact force. A pass of its own, only in scenes with such
+    /// pressure and traction on a loaded surface at the point's position
+    /// and the rigid wall's contact force. A pass of its own, only in scenes with such
     /// loads, so that the scatter adds one vector and needs no position.
     void
     make_point_loads(const double dt);
@@ -227,8 +227,9 @@ namespace mpm
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
     std::vector<double>                        wave_modulus_of_body;
-    /// Each body's pressure on its loaded faces (null: none).
-    std::vector<FunctionParser<dim> *> pressures;
+    /// Each body's pressure and traction on its loaded surface (null:
+    /// none).
+    std::vector<FunctionParser<dim> *> pressures, tractions;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
     std::vector<double> fixed_inverse_density_of_body;
     /// uGIMP/cpGIMP: initial domain half-width of each body's points, in
