@@ -9,6 +9,7 @@
 #include <mpm/background_grid.h>
 
 #include <algorithm>
+#include <map>
 #include <mpm/parameters.h>
 
 namespace mpm
@@ -42,20 +43,31 @@ namespace mpm
     for (unsigned int f = 0; f < 6; ++f)
       prm.declare_entry(std::string("boundary ") + face_names[f],
                         "slip",
-                        Patterns::Selection("free|fixed|slip|friction"),
+                        Patterns::Selection(
+                          "free|fixed|slip|friction|absorbing"),
                         "Velocity condition on this face of the box: free, "
                         "fixed (all components zero), slip (normal "
-                        "component zero) or friction (Coulomb contact with "
+                        "component zero), friction (Coulomb contact with "
                         "'friction coefficient': no flow into the face, "
                         "free separation, the tangential velocity reduced "
                         "by at most mu times the normal velocity removed, "
-                        "never reversed). Faces beyond the dimension are "
-                        "ignored.");
+                        "never reversed) or absorbing (viscous dashpots "
+                        "rho c_p on the normal and rho c_s on the tangential "
+                        "velocity, from 'absorbing body', so that waves "
+                        "leave the grid: the face of a half-space). Faces "
+                        "beyond the dimension are ignored.");
     prm.declare_entry("friction coefficient",
                       "0.5",
                       Patterns::Anything(),
                       "Coulomb coefficient mu >= 0 of the faces of type "
                       "friction (tan of the basal friction angle).");
+    prm.declare_entry("absorbing body",
+                      "0",
+                      Patterns::Anything(),
+                      "Index of the body whose density and material (p- "
+                      "and s-wave speeds of its small-strain moduli) set "
+                      "the impedances of the absorbing faces: the body "
+                      "that meets them.");
     prm.leave_subsection();
   }
 
@@ -110,10 +122,17 @@ namespace mpm
         boundary[f]         = (b == "free"    ? BoundaryType::free
                                : b == "fixed" ? BoundaryType::fixed
                                : b == "slip"  ? BoundaryType::slip
-                                              : BoundaryType::friction);
+                               : b == "friction" ? BoundaryType::friction
+                                                 : BoundaryType::absorbing);
       }
     friction_coefficient =
       Parse::bounded_double(prm, "Grid", "friction coefficient", 0, 1e300);
+    const double body = Parse::bounded_double(prm, "Grid", "absorbing body", 0, 1000);
+    if (body != std::floor(body))
+      throw InputError("Grid/absorbing body",
+                       prm.get("absorbing body"),
+                       "must be a body index, a whole number >= 0");
+    absorbing_body = static_cast<unsigned int>(body);
     prm.leave_subsection();
   }
 
@@ -277,9 +296,14 @@ namespace mpm
   {
     std::vector<unsigned int>            mask(n_owned_nodes, 0u);
     std::vector<unsigned int>            friction_faces(n_owned_nodes, 0u);
+    // Per owned node, the area share of each absorbing face (a face's
+    // area is split equally among its 2^(dim-1) vertices). An owned node's
+    // faces may belong to ghost cells, so those are visited too; the
+    // masks only need one face of each kind and are the same either way.
+    std::map<std::pair<unsigned int, unsigned int>, double> dashpot_area;
     std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
     for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (cell->is_locally_owned() || cell->is_ghost())
         for (const unsigned int f : cell->face_indices())
           if (cell->at_boundary(f))
             {
@@ -292,6 +316,19 @@ namespace mpm
                     if (scalar_partitioner->in_local_range(dof))
                       friction_faces[scalar_partitioner->global_to_local(
                         dof)] |= 1u << id;
+                  continue;
+                }
+              if (prm.boundary[id] == BoundaryType::absorbing)
+                {
+                  double share = 1;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (d != id / 2)
+                      share *= 0.5 * h[d];
+                  cell->face(f)->get_dof_indices(face_dofs);
+                  for (const auto dof : face_dofs)
+                    if (scalar_partitioner->in_local_range(dof))
+                      dashpot_area[{scalar_partitioner->global_to_local(dof),
+                                    id}] += share;
                   continue;
                 }
               if (prm.boundary[id] == BoundaryType::fixed)
@@ -312,6 +349,8 @@ namespace mpm
         if (friction_faces[i] != 0)
           node_frictions.emplace_back(i, friction_faces[i]);
       }
+    for (const auto &[node_and_face, area] : dashpot_area)
+      node_dashpots.push_back({node_and_face.first, node_and_face.second, area});
   }
 
 

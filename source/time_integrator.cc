@@ -2,6 +2,7 @@
 #include <mpm/parameters.h>
 #include <mpm/time_integrator.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace mpm
@@ -242,6 +243,23 @@ namespace mpm
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
     min_nodal_mass = prm.small_mass_fraction * points.min_particle_mass();
+    const auto &grid_prm = grid.parameters();
+    if (std::count(grid_prm.boundary.begin(),
+                   grid_prm.boundary.end(),
+                   BoundaryType::absorbing) > 0)
+      {
+        const auto &bodies = points.bodies();
+        if (grid_prm.absorbing_body >= bodies.size())
+          throw InputError("Grid/absorbing body",
+                           std::to_string(grid_prm.absorbing_body),
+                           "must be the index of a body, < " +
+                             std::to_string(bodies.size()));
+        const auto &body = bodies[grid_prm.absorbing_body];
+        normal_impedance =
+          std::sqrt(body.density * body.material->p_wave_modulus());
+        shear_impedance =
+          std::sqrt(body.density * body.material->shear_modulus());
+      }
     Assert(prm.basis != BasisType::cpgimp ||
              points.layout().deformation_gradient != FieldLayout::absent,
            ExcMessage("cpGIMP needs the deformation gradient"));
@@ -622,8 +640,33 @@ namespace mpm
       for (unsigned int f = 0; f < 2 * dim; ++f)
         if (faces & (1u << f))
           apply_coulomb_contact(u + n_velocities * i + slot, f, mu);
+    if (dt > 0 && !grid.absorbing_nodes().empty())
+      apply_dashpots(slot, dt);
     if (velocity_region.enabled())
       velocity_region.enforce(u, n_velocities, slot, dt);
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::apply_dashpots(const unsigned int slot, const double dt)
+  {
+    // The dashpot force -A Z v (Z = rho c_p on the normal, rho c_s on the
+    // tangential components) taken implicitly in the force update,
+    // m (v - v*) = -dt A Z v, so v = v* / (1 + dt A Z / m): stable for any
+    // nodal mass, and a light node is simply held.
+    double *u = grid_velocity.get_values();
+    for (const AbsorbingNode &a : grid.absorbing_nodes())
+      {
+        double      *node = u + n_velocities * a.node;
+        const double m    = node[node_mass];
+        if (!(m > 0))
+          continue;
+        const double normal = 1. / (1. + dt * a.area * normal_impedance / m);
+        const double shear  = 1. / (1. + dt * a.area * shear_impedance / m);
+        for (unsigned int d = 0; d < dim; ++d)
+          node[slot + d] *= (d == a.face / 2) ? normal : shear;
+      }
   }
 
 

@@ -27,7 +27,17 @@ namespace mpm
     free,    ///< nothing
     fixed,   ///< all velocity components zero
     slip,    ///< normal velocity component zero
-    friction ///< Coulomb contact: no penetration, free separation
+    friction, ///< Coulomb contact: no penetration, free separation
+    absorbing ///< viscous dashpots that let waves leave (Lysmer-Kuhlemeyer)
+  };
+
+
+  /// A node on an absorbing face: the face (x min, x max, y min, ...) and
+  /// the share of its area the node's dashpots act on.
+  struct AbsorbingNode
+  {
+    unsigned int node, face;
+    double       area;
   };
 
   template <int dim>
@@ -43,6 +53,8 @@ namespace mpm
     std::array<unsigned int, dim>     n_cells;
     std::array<BoundaryType, 2 * dim> boundary; ///< x-, x+, y-, y+, z-, z+
     double friction_coefficient; ///< Coulomb mu of the friction faces
+    /// The body whose material sets the absorbing faces' impedances.
+    unsigned int absorbing_body;
 
     /// Size of a cell in each direction.
     Tensor<1, dim>
@@ -222,6 +234,13 @@ namespace mpm
       return node_frictions;
     }
 
+    /// Owned nodes on absorbing faces, one entry per node and face.
+    const std::vector<AbsorbingNode> &
+    absorbing_nodes() const
+    {
+      return node_dashpots;
+    }
+
     /// Local indices of the owned nodes in the box [lower, upper].
     std::vector<unsigned int>
     owned_nodes_in_box(const Point<dim> &lower, const Point<dim> &upper) const;
@@ -254,6 +273,7 @@ namespace mpm
     std::vector<unsigned int> local_node_of_cartesian;
     std::vector<std::pair<unsigned int, unsigned int>> node_constraints;
     std::vector<std::pair<unsigned int, unsigned int>> node_frictions;
+    std::vector<AbsorbingNode>                         node_dashpots;
   };
 } // namespace mpm
 

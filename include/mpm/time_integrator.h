@@ -182,8 +182,12 @@ namespace mpm
     /// Coulomb contact of the nodal velocity @p v with grid face @p face.
     static void
     apply_coulomb_contact(double *v, const unsigned int face, const double mu);
+    /// Absorbing faces' dashpots on the nodal velocities in @p slot over
+    /// the step @p dt.
+    void
+    apply_dashpots(const unsigned int slot, const double dt);
     /// Boundary constraints on the nodal velocities in @p slot; @p dt > 0
-    /// at the force update, where reactions are measured.
+    /// at the force update, where reactions are measured and dashpots act.
     void
     apply_velocity_constraints(const unsigned int slot, const double dt = 0);
     /// Visit every locally owned point with its stencil (see there).
@@ -227,6 +231,8 @@ namespace mpm
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
     std::vector<double>                        wave_modulus_of_body;
+    /// Impedances rho c_p and rho c_s of the absorbing faces.
+    double normal_impedance = 0, shear_impedance = 0;
     /// Each body's pressure and traction on its loaded surface (null:
     /// none).
     std::vector<FunctionParser<dim> *> pressures, tractions;

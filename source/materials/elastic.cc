@@ -78,6 +78,11 @@ namespace mpm
       {
         return c.lambda + 2. * c.mu;
       }
+      double
+      shear_modulus() const override
+      {
+        return c.mu;
+      }
 
       inline void
       update_point(double *p, const FieldLayout &layout, const double dt) const
@@ -172,6 +177,11 @@ namespace mpm
       p_wave_modulus() const override
       {
         return c.lambda + 2. * c.mu;
+      }
+      double
+      shear_modulus() const override
+      {
+        return c.mu;
       }
 
       bool

@@ -316,6 +316,12 @@ namespace mpm
         return constants.lambda + 2. * constants.mu;
       }
 
+      double
+      shear_modulus() const override
+      {
+        return constants.mu;
+      }
+
       bool
       stiffness_is_kirchhoff() const override
       {

@@ -60,6 +60,11 @@ namespace mpm
     virtual double
     p_wave_modulus() const = 0;
 
+    /// Small-strain shear modulus mu, for the s-wave impedance of
+    /// absorbing faces.
+    virtual double
+    shear_modulus() const = 0;
+
     /**
      * Does the stiffness act on the Kirchhoff stress (hyperelastic and
      * log-strain models: tau = J sigma)? Then the Cauchy stiffness is M / J
