@@ -6,14 +6,17 @@ phases of timing.csv, and optionally the points of one output frame.
     result = run_scene(exe, "plasticity/thick_cylinder.prm", ["-s", "..."],
                        frame=0)
     result.rows[-1]["kinetic_energy"], result.timing["steps"], result.points
+
+frame=-1 reads the last frame; frame_fields=("stress",) also reads those
+point fields of it (result.fields["stress"], in the order of the points).
 """
-import csv, os, subprocess, tempfile
+import csv, glob, os, subprocess, tempfile
 from collections import namedtuple
 
-from vtu_points import read_points
+from vtu_points import read_field, read_points
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-Result = namedtuple("Result", "rows timing points returncode stderr")
+Result = namedtuple("Result", "rows timing points fields returncode stderr")
 
 
 def cost(result):
@@ -22,7 +25,8 @@ def cost(result):
         float(result.timing["steps"]["ns_per_particle_step"])
 
 
-def run_scene(exe, scene, overrides=(), frame=None, fields="J", check=True):
+def run_scene(exe, scene, overrides=(), frame=None, fields="J", check=True,
+              frame_fields=()):
     """@p scene is relative to benchmarks/; a failed run raises unless
     @p check is False (then returncode and stderr say why)."""
     with tempfile.TemporaryDirectory() as out:
@@ -38,9 +42,13 @@ def run_scene(exe, scene, overrides=(), frame=None, fields="J", check=True):
         timing_file = os.path.join(out, "timing.csv")
         timing = {t["phase"]: t for t in csv.DictReader(open(timing_file))} \
             if os.path.exists(timing_file) else {}
-        points = read_points(os.path.join(out, "particles_%05d.pvtu" % frame)) \
-            if frame is not None else None
-    return Result(rows, timing, points, r.returncode, r.stderr.strip())
+        points, values = None, {}
+        if frame is not None:
+            name = sorted(glob.glob(os.path.join(out, "particles_*.pvtu")))[-1] \
+                if frame == -1 else os.path.join(out, "particles_%05d.pvtu" % frame)
+            points = read_points(name)
+            values = {f: read_field(name, f) for f in frame_fields}
+    return Result(rows, timing, points, values, r.returncode, r.stderr.strip())
 
 
 def sweep_arguments(parser):

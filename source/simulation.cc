@@ -32,6 +32,7 @@ namespace mpm
       BodyParameters<2>::declare_parameters(prm, b);
     VelocityRegionParameters<2>::declare_parameters(prm);
     RigidWallParameters<2>::declare_parameters(prm);
+    VirtualFluidParameters<2>::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
     VerificationParameters::declare_parameters(prm);
   }
@@ -53,6 +54,7 @@ namespace mpm
       body_parameters[b].parse_parameters(prm, b, grid_parameters);
     velocity_region_parameters.parse_parameters(prm);
     rigid_wall_parameters.parse_parameters(prm);
+    virtual_fluid_parameters.parse_parameters(prm, n_bodies);
     output_parameters.parse_parameters(prm);
     verification_parameters.parse_parameters(prm);
   }
@@ -101,19 +103,26 @@ namespace mpm
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
     rigid_wall   = std::make_unique<RigidWall<dim>>(rigid_wall_parameters,
                                                   grid->min_cell_size());
+    virtual_fluid = std::make_unique<VirtualFluid<dim>>(
+      virtual_fluid_parameters,
+      integrator_parameters.gravity.norm(),
+      grid->min_cell_size());
     integrator   = std::make_unique<TimeIntegrator<dim>>(integrator_parameters,
                                                        *grid,
                                                        *points,
                                                        *velocity_region,
                                                        *timer,
                                                        comm,
-                                                       rigid_wall.get());
+                                                       rigid_wall.get(),
+                                                       virtual_fluid.get());
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
     std::vector<std::string> columns = verification->columns();
     for (const auto &c : velocity_region->columns())
       columns.push_back(c);
     for (const auto &c : rigid_wall->columns())
+      columns.push_back(c);
+    for (const auto &c : virtual_fluid->columns())
       columns.push_back(c);
     if (output_parameters.body_extents)
       for (unsigned int b = 0; b < body_parameters.size(); ++b)
@@ -189,6 +198,9 @@ namespace mpm
       extra.push_back(f);
     for (const double f :
          rigid_wall->mean_force_since_last_call(integrator->time(), comm))
+      extra.push_back(f);
+    for (const double f :
+         virtual_fluid->mean_force_since_last_call(integrator->time(), comm))
       extra.push_back(f);
     if (output_parameters.body_extents)
       for (const auto &[lower, upper] : points->body_extents())

@@ -219,18 +219,41 @@ namespace mpm
     VelocityRegion<dim>             &velocity_region,
     TimerOutput                     &timer,
     MPI_Comm                         comm,
-    RigidWall<dim>                  *rigid_wall)
+    RigidWall<dim>                  *rigid_wall,
+    VirtualFluid<dim>               *virtual_fluid)
     : prm(parameters)
     , grid(grid)
     , points(points)
     , velocity_region(velocity_region)
     , rigid_wall(rigid_wall != nullptr && rigid_wall->enabled() ? rigid_wall
                                                                 : nullptr)
+    , virtual_fluid(virtual_fluid != nullptr && virtual_fluid->enabled()
+                      ? virtual_fluid
+                      : nullptr)
     , timer(timer)
     , comm(comm)
   {
     grid_sums.reinit(grid.make_partitioner(n_sums));
     grid_velocity.reinit(grid.make_partitioner(n_velocities));
+    if (this->virtual_fluid)
+      {
+        fluid_volume.reinit(grid.make_partitioner(1));
+        support_volume.reinit(grid.make_partitioner(1));
+        fluid_force.reinit(grid.make_partitioner(dim));
+        // The integral of a node's linear shape function: a share 1/2^dim
+        // of each cell around it (less at the grid's faces).
+        std::vector<types::global_dof_index> dofs(
+          grid.dof_handler().get_fe().n_dofs_per_cell());
+        for (const auto &cell : grid.dof_handler().active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dofs);
+              for (const auto dof : dofs)
+                support_volume(dof) += cell->measure() / dofs.size();
+            }
+        support_volume.compress(VectorOperation::add);
+        support_volume.update_ghost_values();
+      }
     for (const auto &body : points.bodies())
       {
         wave_modulus_of_body.push_back(body.material->p_wave_modulus());
@@ -522,6 +545,80 @@ namespace mpm
         }
     });
     grid_sums.compress(VectorOperation::add);
+    if (forces && virtual_fluid)
+      add_fluid_forces(basis);
+  }
+
+
+  /**
+   * The virtual stress method (cl-mpm): the force of a pressure p on the
+   * surface of a body, f_I = -int_dOmega p n phi_I dA, is by the divergence
+   * theorem -int_Omega (p grad phi_I + phi_I grad p) dV, an integral over
+   * the body that the points evaluate like the internal force, with the
+   * "virtual stress" -p I. It needs no surface: the surface is wherever
+   * the points end. For a node whose support lies inside the body the exact
+   * integral vanishes, so only nodes whose support the wetted bodies do
+   * not fill (less than 99 %) get it; inside, the point quadrature would
+   * only add its error, which the pressure's kink at the fluid's level
+   * makes large. Measured on the floating block: draft error 0.06 % with
+   * this mask, 0.7 % with every node, 19 % with a 90 % threshold (it drops
+   * nodes just inside the surface, whose share is not zero).
+   */
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::add_fluid_forces(const Basis &basis)
+  {
+    TimerOutput::Scope scope(timer, "virtual fluid");
+    const FieldLayout &l = points.layout();
+    fluid_volume         = 0.;
+    for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+      if (virtual_fluid->wets(q[l.body]))
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          fluid_volume.local_element(s.nodes[v]) += s.weights[v] * q[l.volume];
+    });
+    fluid_volume.compress(VectorOperation::add);
+    fluid_volume.update_ghost_values();
+
+    auto on_surface = [&](const unsigned int node) {
+      return fluid_volume.local_element(node) <
+             0.99 * support_volume.local_element(node);
+    };
+    fluid_force = 0.;
+    virtual_fluid->set_time(t);
+    for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
+      if (!virtual_fluid->wets(q[l.body]))
+        return;
+      bool near_surface = false;
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        near_surface = near_surface || on_surface(s.nodes[v]);
+      if (!near_surface)
+        return;
+      Tensor<1, dim> grad_p;
+      const double   pressure = virtual_fluid->pressure(p->get_location(), grad_p);
+      if (pressure == 0 && grad_p.norm_square() == 0)
+        return;
+      const double V = q[l.volume];
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        if (on_surface(s.nodes[v]))
+          {
+            const Tensor<1, dim> f =
+              -V * (pressure * s.gradients[v] + s.weights[v] * grad_p);
+            for (unsigned int d = 0; d < dim; ++d)
+              fluid_force.local_element(dim * s.nodes[v] + d) += f[d];
+          }
+    });
+    fluid_force.compress(VectorOperation::add);
+
+    double *g         = grid_sums.get_values();
+    fluid_force_total = Tensor<1, dim>();
+    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double f = fluid_force.local_element(dim * i + d);
+          g[n_sums * i + force + d] += f;
+          fluid_force_total[d] += f;
+        }
   }
 
 
@@ -622,6 +719,8 @@ namespace mpm
       }
     apply_velocity_constraints(v_new, dt);
     grid_velocity.update_ghost_values();
+    if (virtual_fluid)
+      virtual_fluid->add_impulse(dt * fluid_force_total);
   }
 
 

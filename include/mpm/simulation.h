@@ -54,6 +54,7 @@ namespace mpm
     std::vector<BodyParameters<dim>> body_parameters;
     VelocityRegionParameters<dim>    velocity_region_parameters;
     RigidWallParameters<dim>         rigid_wall_parameters;
+    VirtualFluidParameters<dim>      virtual_fluid_parameters;
     OutputParameters                 output_parameters;
     VerificationParameters           verification_parameters;
 
@@ -62,6 +63,7 @@ namespace mpm
     std::unique_ptr<MaterialPoints<dim>> points;
     std::unique_ptr<VelocityRegion<dim>> velocity_region;
     std::unique_ptr<RigidWall<dim>>      rigid_wall;
+    std::unique_ptr<VirtualFluid<dim>>   virtual_fluid;
     std::unique_ptr<TimeIntegrator<dim>> integrator;
     std::unique_ptr<Verification<dim>>   verification;
     std::unique_ptr<Output<dim>>         output;

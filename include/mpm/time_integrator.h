@@ -10,6 +10,7 @@
 #include <mpm/basis.h>
 #include <mpm/boundary_conditions/rigid_wall.h>
 #include <mpm/boundary_conditions/velocity_region.h>
+#include <mpm/boundary_conditions/virtual_fluid.h>
 #include <mpm/material_points.h>
 
 namespace mpm
@@ -91,7 +92,8 @@ namespace mpm
                    VelocityRegion<dim>             &velocity_region,
                    TimerOutput                     &timer,
                    MPI_Comm                         comm,
-                   RigidWall<dim>                  *rigid_wall = nullptr);
+                   RigidWall<dim>                  *rigid_wall    = nullptr,
+                   VirtualFluid<dim>               *virtual_fluid = nullptr);
 
     /// Advance by one step, of at most @p max_dt. Throws RunError (on all
     /// ranks) with a diagnosis if the new state is not sound.
@@ -163,6 +165,11 @@ namespace mpm
     scatter_to_grid(const Basis &basis,
                     const bool   mass_and_momentum,
                     const bool   forces);
+    /// The virtual stress method: the fluid's pressure on the wetted
+    /// surface, as nodal forces added to the scattered ones.
+    template <typename Basis>
+    void
+    add_fluid_forces(const Basis &basis);
     void
     grid_velocities_from_momentum(const unsigned int slot);
     void
@@ -225,11 +232,19 @@ namespace mpm
     VelocityRegion<dim>            &velocity_region;
     /// Null, or a wall acting on the points (only if enabled).
     RigidWall<dim> *rigid_wall;
+    /// Null, or a fluid acting on the bodies' surface (only if enabled).
+    VirtualFluid<dim> *virtual_fluid;
     TimerOutput    &timer;
     MPI_Comm        comm;
 
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
+    /// Virtual fluid only: the wetted bodies' volume at the nodes, the
+    /// volume of a node's support in the grid (integral of its shape
+    /// function), and the fluid's nodal forces.
+    LinearAlgebra::distributed::Vector<double> fluid_volume, support_volume,
+      fluid_force;
+    Tensor<1, dim> fluid_force_total; ///< this step's, on owned nodes
     std::vector<double>                        wave_modulus_of_body;
     /// Impedances rho c_p and rho c_s of the absorbing faces.
     double normal_impedance = 0, shear_impedance = 0;
