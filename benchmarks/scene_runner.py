@@ -9,6 +9,7 @@ phases of timing.csv, and optionally the points of one output frame.
 
 frame=-1 reads the last frame; frame_fields=("stress",) also reads those
 point fields of it (result.fields["stress"], in the order of the points).
+frame="all" reads every frame: result.points and result.fields are lists.
 """
 import csv, glob, os, subprocess, tempfile
 from collections import namedtuple
@@ -43,9 +44,14 @@ def run_scene(exe, scene, overrides=(), frame=None, fields="J", check=True,
         timing = {t["phase"]: t for t in csv.DictReader(open(timing_file))} \
             if os.path.exists(timing_file) else {}
         points, values = None, {}
-        if frame is not None:
-            name = sorted(glob.glob(os.path.join(out, "particles_*.pvtu")))[-1] \
-                if frame == -1 else os.path.join(out, "particles_%05d.pvtu" % frame)
+        frames = sorted(glob.glob(os.path.join(out, "particles_*.pvtu")))
+        if frame == "all":
+            points = [read_points(name) for name in frames]
+            values = [{f: read_field(name, f) for f in frame_fields}
+                      for name in frames]
+        elif frame is not None:
+            name = frames[-1] if frame == -1 else \
+                os.path.join(out, "particles_%05d.pvtu" % frame)
             points = read_points(name)
             values = {f: read_field(name, f) for f in frame_fields}
     return Result(rows, timing, points, values, r.returncode, r.stderr.strip())

@@ -164,6 +164,18 @@ namespace mpm
                       "one for all), in the initial position x, y, z of the "
                       "point and time t, e.g. for manufactured solutions. "
                       "Non-zero makes every point store its initial position.");
+    prm.declare_entry("rigid velocity",
+                      "",
+                      Patterns::Anything(),
+                      "Empty for a deformable body. Otherwise the body is "
+                      "rigid and moves with this velocity: one expression "
+                      "per component separated by ';' (or one for all), in "
+                      "t (a footing, a penetrometer, a tool). It gets a "
+                      "velocity field of its own and acts on the other "
+                      "bodies through contact (section Contact); its force "
+                      "on them is written to statistics.csv "
+                      "(rigid<N>_force_x, ...). Its material is not used "
+                      "except for the density, which sets its mass.");
     prm.declare_entry("material",
                       "linear elastic",
                       Patterns::Selection(MaterialRegistry::names()),
@@ -216,6 +228,11 @@ namespace mpm
     if (!Parse::is_zero(force))
       body_force =
         Parse::vector_function<dim>(force, constants, name + "/body force");
+    if (!prm.get("rigid velocity").empty())
+      rigid_velocity = Parse::vector_function<dim>(
+        Parse::expression_list(prm, "rigid velocity", dim, name),
+        constants,
+        name + "/rigid velocity");
     material_name = prm.get("material");
     material = MaterialRegistry::create<dim>(material_name, prm, name, density);
     if (is_displaced() && !material->needs_deformation_gradient())
@@ -265,9 +282,9 @@ namespace mpm
   void
   BodyParameters<dim>::parse_surface_loads(const ParameterHandler &prm)
   {
-    const std::string surface  = prm.get("loaded surface");
-    loaded_surface             = surface;
-    const std::string ids      = prm.get("pressure boundary ids");
+    const std::string surface    = prm.get("loaded surface");
+    loaded_surface               = surface;
+    const std::string ids        = prm.get("pressure boundary ids");
     bool              has_normal = false;
     if (mesh_seeds)
       {
@@ -302,8 +319,7 @@ namespace mpm
         else if (!surface.empty())
           loaded_points = Parse::vector_function<dim>({surface},
                                                       constants,
-                                                      name +
-                                                        "/loaded surface");
+                                                      name + "/loaded surface");
       }
     const bool has_surface = has_normal || loaded_points;
 
@@ -313,14 +329,15 @@ namespace mpm
         if (!has_normal)
           throw InputError(name + "/pressure",
                            p,
-                           has_surface ?
-                             "needs a surface with a normal: a face of the "
-                             "bounding box ('y max', ...) or a mesh's "
-                             "'pressure boundary ids'; use 'traction' on "
-                             "points picked by an expression" :
-                             "needs a loaded surface: 'loaded surface' for a "
-                             "shape, 'pressure boundary ids' for a mesh");
-        pressure = Parse::vector_function<dim>({p}, constants, name + "/pressure");
+                           has_surface
+                             ? "needs a surface with a normal: a face of the "
+                               "bounding box ('y max', ...) or a mesh's "
+                               "'pressure boundary ids'; use 'traction' on "
+                               "points picked by an expression"
+                             : "needs a loaded surface: 'loaded surface' for a "
+                               "shape, 'pressure boundary ids' for a mesh");
+        pressure =
+          Parse::vector_function<dim>({p}, constants, name + "/pressure");
       }
     const auto t = Parse::expression_list(prm, "traction", dim, name);
     if (!Parse::is_zero(t))
@@ -330,7 +347,8 @@ namespace mpm
                            prm.get("traction"),
                            "needs a loaded surface: 'loaded surface' for a "
                            "shape, 'pressure boundary ids' for a mesh");
-        traction = Parse::vector_function<dim>(t, constants, name + "/traction");
+        traction =
+          Parse::vector_function<dim>(t, constants, name + "/traction");
       }
   }
 
@@ -345,11 +363,11 @@ namespace mpm
       {
         // The outer layer of the lattice: its points lie half a spacing
         // inside the face, the next layer one and a half.
-        const unsigned int axis    = loaded_face / 2;
-        const bool         upper   = loaded_face % 2 == 1;
-        const double       spacing = grid.cell_size()[axis] / particles_per_cell;
-        const double depth = upper ? upper_corner[axis] - x[axis] :
-                                     x[axis] - lower_corner[axis];
+        const unsigned int axis  = loaded_face / 2;
+        const bool         upper = loaded_face % 2 == 1;
+        const double spacing     = grid.cell_size()[axis] / particles_per_cell;
+        const double depth =
+          upper ? upper_corner[axis] - x[axis] : x[axis] - lower_corner[axis];
         if (depth < spacing)
           {
             const double sign = upper ? 1. : -1.;
@@ -453,9 +471,10 @@ namespace mpm
             visit(x,
                   xi,
                   mesh_seeds->volumes[i],
-                  mesh_seeds->areas.empty() ?
-                    SurfaceShare<dim>() :
-                    SurfaceShare<dim>{mesh_seeds->areas[i], Tensor<1, dim>()});
+                  mesh_seeds->areas.empty()
+                    ? SurfaceShare<dim>()
+                    : SurfaceShare<dim>{mesh_seeds->areas[i],
+                                        Tensor<1, dim>()});
           }
         return;
       }
@@ -587,9 +606,9 @@ namespace mpm
           if (cell->is_locally_owned())
             body.for_each_seed(
               cell->vertex(0),
-              [&](const Point<dim>     &x,
-                  const Point<dim>     &xi,
-                  const double          volume,
+              [&](const Point<dim>        &x,
+                  const Point<dim>        &xi,
+                  const double             volume,
                   const SurfaceShare<dim> &surface) {
                 const double mass = body.density * volume;
                 minimum_mass      = std::min(minimum_mass, mass);
@@ -642,9 +661,9 @@ namespace mpm
     for (unsigned int b = 0; b < body_list.size(); ++b)
       if (body_list[b].has_surface_loads() &&
           Utilities::MPI::sum(loaded_area[b], comm) == 0)
-        throw InputError(body_list[b].name +
-                           (body_list[b].mesh_seeds ? "/pressure boundary ids" :
-                                                      "/loaded surface"),
+        throw InputError(body_list[b].name + (body_list[b].mesh_seeds
+                                                ? "/pressure boundary ids"
+                                                : "/loaded surface"),
                          body_list[b].loaded_surface,
                          "no material point of the body lies on its loaded "
                          "surface, so 'pressure' and 'traction' would act on "

@@ -33,6 +33,7 @@ namespace mpm
     VelocityRegionParameters<2>::declare_parameters(prm);
     RigidWallParameters<2>::declare_parameters(prm);
     VirtualFluidParameters<2>::declare_parameters(prm);
+    ContactParameters<2>::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
     VerificationParameters::declare_parameters(prm);
   }
@@ -55,6 +56,7 @@ namespace mpm
     velocity_region_parameters.parse_parameters(prm);
     rigid_wall_parameters.parse_parameters(prm);
     virtual_fluid_parameters.parse_parameters(prm, n_bodies);
+    contact_parameters.parse_parameters(prm, n_bodies);
     output_parameters.parse_parameters(prm);
     verification_parameters.parse_parameters(prm);
   }
@@ -101,12 +103,14 @@ namespace mpm
     points->generate();
     velocity_region =
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
-    rigid_wall   = std::make_unique<RigidWall<dim>>(rigid_wall_parameters,
+    rigid_wall = std::make_unique<RigidWall<dim>>(rigid_wall_parameters,
                                                   grid->min_cell_size());
-    virtual_fluid = std::make_unique<VirtualFluid<dim>>(
-      virtual_fluid_parameters,
-      integrator_parameters.gravity.norm(),
-      grid->min_cell_size());
+    virtual_fluid =
+      std::make_unique<VirtualFluid<dim>>(virtual_fluid_parameters,
+                                          integrator_parameters.gravity.norm(),
+                                          grid->min_cell_size());
+    contact      = std::make_unique<MultiFieldContact<dim>>(contact_parameters,
+                                                       body_parameters);
     integrator   = std::make_unique<TimeIntegrator<dim>>(integrator_parameters,
                                                        *grid,
                                                        *points,
@@ -114,7 +118,8 @@ namespace mpm
                                                        *timer,
                                                        comm,
                                                        rigid_wall.get(),
-                                                       virtual_fluid.get());
+                                                       virtual_fluid.get(),
+                                                       contact.get());
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
     std::vector<std::string> columns = verification->columns();
@@ -123,6 +128,8 @@ namespace mpm
     for (const auto &c : rigid_wall->columns())
       columns.push_back(c);
     for (const auto &c : virtual_fluid->columns())
+      columns.push_back(c);
+    for (const auto &c : contact->columns())
       columns.push_back(c);
     if (output_parameters.body_extents)
       for (unsigned int b = 0; b < body_parameters.size(); ++b)
@@ -201,6 +208,9 @@ namespace mpm
       extra.push_back(f);
     for (const double f :
          virtual_fluid->mean_force_since_last_call(integrator->time(), comm))
+      extra.push_back(f);
+    for (const double f :
+         contact->mean_forces_since_last_call(integrator->time(), comm))
       extra.push_back(f);
     if (output_parameters.body_extents)
       for (const auto &[lower, upper] : points->body_extents())

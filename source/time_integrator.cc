@@ -220,7 +220,8 @@ namespace mpm
     TimerOutput                     &timer,
     MPI_Comm                         comm,
     RigidWall<dim>                  *rigid_wall,
-    VirtualFluid<dim>               *virtual_fluid)
+    VirtualFluid<dim>               *virtual_fluid,
+    MultiFieldContact<dim>          *contact)
     : prm(parameters)
     , grid(grid)
     , points(points)
@@ -230,16 +231,26 @@ namespace mpm
     , virtual_fluid(virtual_fluid != nullptr && virtual_fluid->enabled()
                       ? virtual_fluid
                       : nullptr)
+    , contact(contact != nullptr && contact->n_fields() > 1 ? contact : nullptr)
+    , n_fields(this->contact ? this->contact->n_fields() : 1)
     , timer(timer)
     , comm(comm)
   {
-    grid_sums.reinit(grid.make_partitioner(n_sums));
-    grid_velocity.reinit(grid.make_partitioner(n_velocities));
+    grid_sums.reinit(grid.make_partitioner(n_fields * n_sums));
+    grid_velocity.reinit(grid.make_partitioner(n_fields * n_velocities));
+    for (unsigned int b = 0; b < points.bodies().size(); ++b)
+      field_of_body.push_back(this->contact ? this->contact->field_of_body(b)
+                                            : 0);
+    if (this->contact)
+      contact_data.reinit(grid.make_partitioner(n_fields * (dim + 1)));
     if (this->virtual_fluid)
       {
         fluid_volume.reinit(grid.make_partitioner(1));
+        fluid_force.reinit(grid.make_partitioner(n_fields * dim));
+      }
+    if (this->virtual_fluid || this->contact)
+      {
         support_volume.reinit(grid.make_partitioner(1));
-        fluid_force.reinit(grid.make_partitioner(dim));
         // The integral of a node's linear shape function: a share 1/2^dim
         // of each cell around it (less at the grid's faces).
         std::vector<types::global_dof_index> dofs(
@@ -256,7 +267,9 @@ namespace mpm
       }
     for (const auto &body : points.bodies())
       {
-        wave_modulus_of_body.push_back(body.material->p_wave_modulus());
+        // A rigid body's material is not used: no wave crosses it.
+        wave_modulus_of_body.push_back(
+          body.rigid_velocity ? 0. : body.material->p_wave_modulus());
         fixed_inverse_density_of_body.push_back(
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
         body_forces.push_back(body.body_force.get());
@@ -265,7 +278,7 @@ namespace mpm
         has_body_forces = has_body_forces || body.body_force;
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
-    min_nodal_mass = prm.small_mass_fraction * points.min_particle_mass();
+    min_nodal_mass       = prm.small_mass_fraction * points.min_particle_mass();
     const auto &grid_prm = grid.parameters();
     if (std::count(grid_prm.boundary.begin(),
                    grid_prm.boundary.end(),
@@ -483,20 +496,24 @@ namespace mpm
           for (unsigned int c = force; c < n_sums; ++c)
             g[i + c] = 0;
       }
+    const bool with_gradients = contact && mass_and_momentum;
+    if (with_gradients)
+      contact_data = 0.;
 
     const FieldLayout   &l       = points.layout();
     const Tensor<1, dim> gravity = prm.gravity;
     const bool           apic    = prm.transfer == Transfer::apic;
     // Local copies: the compiler cannot tell that the members do not change
     // while the loop writes the nodal sums through a double *.
-    const bool with_body_forces = has_body_forces;
+    const bool with_body_forces   = has_body_forces;
     const bool with_point_loads   = l.point_load != FieldLayout::absent;
     const bool with_surface_loads = l.load_moment != FieldLayout::absent;
     for (auto *f : body_forces)
       if (f != nullptr)
         f->set_time(t);
     for_each_point(basis, [&](auto &, const double *q, const auto &s) {
-      const double m = q[l.mass];
+      const double       m     = q[l.mass];
+      const unsigned int field = field_of(q);
       if (mass_and_momentum)
         {
           const Tensor<1, dim> mv = m * Fields::vector<dim>(q + l.velocity);
@@ -507,12 +524,22 @@ namespace mpm
             mC = m * Fields::tensor<dim>(q + l.affine_velocity);
           for (unsigned int v = 0; v < Basis::n_nodes; ++v)
             {
-              double              *node = g + n_sums * s.nodes[v];
+              double *node           = g + n_sums * slot_of(s.nodes[v], field);
               const Tensor<1, dim> p = apic ? mv + mC * s.node_offset(v) : mv;
               node[mass] += s.weights[v] * m;
               for (unsigned int d = 0; d < dim; ++d)
                 node[momentum + d] += s.weights[v] * p[d];
             }
+          // Contact normals and volumes of each field.
+          if (with_gradients)
+            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+              {
+                double *data =
+                  contact_data.begin() + (dim + 1) * slot_of(s.nodes[v], field);
+                for (unsigned int d = 0; d < dim; ++d)
+                  data[d] += m * s.gradients[v][d];
+                data[dim] += s.weights[v] * q[l.volume];
+              }
         }
       if (forces)
         {
@@ -528,7 +555,7 @@ namespace mpm
               {
                 const Tensor<1, dim> f =
                   s.weights[v] * mg - stress_term * s.gradients[v];
-                double *node = g + n_sums * s.nodes[v] + force;
+                double *node = g + n_sums * slot_of(s.nodes[v], field) + force;
                 for (unsigned int d = 0; d < dim; ++d)
                   node[d] += f[d];
               }
@@ -545,6 +572,8 @@ namespace mpm
         }
     });
     grid_sums.compress(VectorOperation::add);
+    if (with_gradients)
+      contact_data.compress(VectorOperation::add);
     if (forces && virtual_fluid)
       add_fluid_forces(basis);
   }
@@ -595,7 +624,8 @@ namespace mpm
       if (!near_surface)
         return;
       Tensor<1, dim> grad_p;
-      const double   pressure = virtual_fluid->pressure(p->get_location(), grad_p);
+      const double   pressure =
+        virtual_fluid->pressure(p->get_location(), grad_p);
       if (pressure == 0 && grad_p.norm_square() == 0)
         return;
       const double V = q[l.volume];
@@ -605,14 +635,15 @@ namespace mpm
             const Tensor<1, dim> f =
               -V * (pressure * s.gradients[v] + s.weights[v] * grad_p);
             for (unsigned int d = 0; d < dim; ++d)
-              fluid_force.local_element(dim * s.nodes[v] + d) += f[d];
+              fluid_force.local_element(dim * slot_of(s.nodes[v], field_of(q)) +
+                                        d) += f[d];
           }
     });
     fluid_force.compress(VectorOperation::add);
 
     double *g         = grid_sums.get_values();
     fluid_force_total = Tensor<1, dim>();
-    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+    for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
       for (unsigned int d = 0; d < dim; ++d)
         {
           const double f = fluid_force.local_element(dim * i + d);
@@ -685,7 +716,8 @@ namespace mpm
     TimerOutput::Scope scope(timer, "grid update");
     const double      *g = grid_sums.get_values();
     double            *u = grid_velocity.get_values();
-    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+    // The fields of a node follow each other: one loop over all entries.
+    for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
       {
         const double *node  = g + n_sums * i;
         double       *vel   = u + n_velocities * i;
@@ -708,7 +740,7 @@ namespace mpm
     double            *u = grid_velocity.get_values();
     // Implicit in the damping term: unconditionally stable for any c.
     const double damping_factor = 1. / (1. + prm.damping * dt);
-    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+    for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
       {
         const double *node = g + n_sums * i;
         double       *vel  = u + n_velocities * i;
@@ -729,20 +761,80 @@ namespace mpm
   TimeIntegrator<dim>::apply_velocity_constraints(const unsigned int slot,
                                                   const double       dt)
   {
+    if (contact)
+      apply_contact(slot, dt);
+    // Grid faces and the velocity region act on every field alike.
     double *u = grid_velocity.get_values();
     for (const auto &[i, mask] : grid.constrained_nodes())
-      for (unsigned int d = 0; d < dim; ++d)
-        if (mask & (1u << d))
-          u[n_velocities * i + slot + d] = 0;
+      for (unsigned int f = 0; f < n_fields; ++f)
+        for (unsigned int d = 0; d < dim; ++d)
+          if (mask & (1u << d))
+            u[n_velocities * slot_of(i, f) + slot + d] = 0;
     const double mu = grid.parameters().friction_coefficient;
     for (const auto &[i, faces] : grid.friction_nodes())
-      for (unsigned int f = 0; f < 2 * dim; ++f)
-        if (faces & (1u << f))
-          apply_coulomb_contact(u + n_velocities * i + slot, f, mu);
+      for (unsigned int f = 0; f < n_fields; ++f)
+        for (unsigned int face = 0; face < 2 * dim; ++face)
+          if (faces & (1u << face))
+            apply_coulomb_contact(u + n_velocities * slot_of(i, f) + slot,
+                                  face,
+                                  mu);
     if (dt > 0 && !grid.absorbing_nodes().empty())
       apply_dashpots(slot, dt);
     if (velocity_region.enabled())
-      velocity_region.enforce(u, n_velocities, slot, dt);
+      for (unsigned int f = 0; f < n_fields; ++f)
+        velocity_region.enforce(u + n_velocities * f,
+                                n_fields * n_velocities,
+                                slot,
+                                dt);
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::apply_contact(const unsigned int slot, const double dt)
+  {
+    double       *u    = grid_velocity.get_values();
+    const double *data = contact_data.get_values();
+    contact->set_time(t);
+    std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
+    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+      contact->correct_node(u + n_velocities * slot_of(i, 0),
+                            n_velocities,
+                            slot,
+                            data + (dim + 1) * slot_of(i, 0),
+                            support_volume.local_element(i),
+                            impulse);
+    if (dt > 0)
+      contact->add_rigid_impulses(impulse);
+  }
+
+
+  template <int dim>
+  double
+  TimeIntegrator<dim>::nodal_mass(const unsigned int i) const
+  {
+    double m = 0;
+    for (unsigned int f = 0; f < n_fields; ++f)
+      m +=
+        grid_velocity.local_element(n_velocities * slot_of(i, f) + node_mass);
+    return m;
+  }
+
+
+  template <int dim>
+  double
+  TimeIntegrator<dim>::nodal_velocity(const unsigned int i,
+                                      const unsigned int d) const
+  {
+    double m = 0, p = 0;
+    for (unsigned int f = 0; f < n_fields; ++f)
+      {
+        const double *node =
+          grid_velocity.begin() + n_velocities * slot_of(i, f);
+        m += node[node_mass];
+        p += node[node_mass] * node[v_new + d];
+      }
+    return m > 0 ? p / m : 0.;
   }
 
 
@@ -756,16 +848,17 @@ namespace mpm
     // nodal mass, and a light node is simply held.
     double *u = grid_velocity.get_values();
     for (const AbsorbingNode &a : grid.absorbing_nodes())
-      {
-        double      *node = u + n_velocities * a.node;
-        const double m    = node[node_mass];
-        if (!(m > 0))
-          continue;
-        const double normal = 1. / (1. + dt * a.area * normal_impedance / m);
-        const double shear  = 1. / (1. + dt * a.area * shear_impedance / m);
-        for (unsigned int d = 0; d < dim; ++d)
-          node[slot + d] *= (d == a.face / 2) ? normal : shear;
-      }
+      for (unsigned int f = 0; f < n_fields; ++f)
+        {
+          double      *node = u + n_velocities * slot_of(a.node, f);
+          const double m    = node[node_mass];
+          if (!(m > 0))
+            continue;
+          const double normal = 1. / (1. + dt * a.area * normal_impedance / m);
+          const double shear  = 1. / (1. + dt * a.area * shear_impedance / m);
+          for (unsigned int d = 0; d < dim; ++d)
+            node[slot + d] *= (d == a.face / 2) ? normal : shear;
+        }
   }
 
 
@@ -802,19 +895,21 @@ namespace mpm
   template <typename Stencil>
   inline Tensor<2, dim>
   TimeIntegrator<dim>::velocity_gradient(const Stencil     &s,
-                                         const unsigned int slot) const
+                                         const unsigned int slot,
+                                         const unsigned int field) const
   {
-    const double  *u = grid_velocity.get_values();
-    Tensor<1, dim> v_point;
+    const double      *u = grid_velocity.get_values() + n_velocities * field;
+    const unsigned int stride = n_fields * n_velocities;
+    Tensor<1, dim>     v_point;
     for (unsigned int v = 0; v < s.weights.size(); ++v)
-      v_point += s.weights[v] *
-                 Fields::vector<dim>(u + n_velocities * s.nodes[v] + slot);
+      v_point +=
+        s.weights[v] * Fields::vector<dim>(u + stride * s.nodes[v] + slot);
     // Sum of (v_I - v_point) grad phi_I: equal to sum v_I grad phi_I, since
     // the gradients sum to zero, but light nodes can now be left out.
     Tensor<2, dim> L;
     for (unsigned int v = 0; v < s.weights.size(); ++v)
       {
-        const double *node = u + n_velocities * s.nodes[v];
+        const double *node = u + stride * s.nodes[v];
         if (node[node_mass] > min_nodal_mass)
           L += outer_product(Fields::vector<dim>(node + slot) - v_point,
                              s.gradients[v]);
@@ -830,19 +925,22 @@ namespace mpm
                                            const double dt,
                                            const bool   kinematics)
   {
-    TimerOutput::Scope                         scope(timer, "G2P");
-    const FieldLayout                         &l = points.layout();
-    const double                              *u = grid_velocity.get_values();
-    const double                               alpha = prm.flip_fraction;
+    TimerOutput::Scope scope(timer, "G2P");
+    const FieldLayout &l      = points.layout();
+    const double      *u_all  = grid_velocity.get_values();
+    const unsigned int stride = n_fields * n_velocities;
+    const double       alpha  = prm.flip_fraction;
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
     // Compiled once for each transfer, so that the PIC/FLIP loop carries
     // nothing of APIC's.
     auto gather = [&](auto apic) {
       for_each_point(basis, [&](auto &p, double *q, const auto &s) {
-        Tensor<1, dim> v_grid, dv_grid;
+        const unsigned int field = field_of(q);
+        const double      *u     = u_all + n_velocities * field;
+        Tensor<1, dim>     v_grid, dv_grid;
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           {
-            const double        *node = u + n_velocities * s.nodes[v];
+            const double        *node = u + stride * s.nodes[v];
             const Tensor<1, dim> b    = Fields::vector<dim>(node + v_new);
             v_grid += s.weights[v] * b;
             // FLIP's velocity increment; APIC does not use it.
@@ -855,8 +953,8 @@ namespace mpm
             basis.affine_weights(s, affine);
             Tensor<2, dim> C;
             for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-              C += outer_product(Fields::vector<dim>(
-                                   u + n_velocities * s.nodes[v] + v_new),
+              C += outer_product(Fields::vector<dim>(u + stride * s.nodes[v] +
+                                                     v_new),
                                  affine[v]);
             Fields::store(v_grid, q + l.velocity);
             Fields::store(C, q + l.affine_velocity);
@@ -870,7 +968,7 @@ namespace mpm
           }
         p->set_location(p->get_location() + dt * v_grid);
         if (kinematics)
-          apply_velocity_gradient(p, q, velocity_gradient(s, v_new), dt);
+          apply_velocity_gradient(p, q, velocity_gradient(s, v_new, field), dt);
       });
     };
     if (prm.transfer == Transfer::apic)
@@ -889,7 +987,10 @@ namespace mpm
   {
     TimerOutput::Scope scope(timer, "G2P");
     for_each_point(basis, [&](auto &p, double *q, const auto &s) {
-      apply_velocity_gradient(p, q, velocity_gradient(s, slot), dt);
+      apply_velocity_gradient(p,
+                              q,
+                              velocity_gradient(s, slot, field_of(q)),
+                              dt);
     });
   }
 
@@ -938,10 +1039,11 @@ namespace mpm
   {
     TimerOutput::Scope scope(timer, "stress");
     for (unsigned int b = 0; b < points.bodies().size(); ++b)
-      points.bodies()[b].material->update_stresses(points.handler(),
-                                                   points.layout(),
-                                                   b,
-                                                   dt);
+      if (!points.bodies()[b].rigid_velocity) // a rigid body has no stress
+        points.bodies()[b].material->update_stresses(points.handler(),
+                                                     points.layout(),
+                                                     b,
+                                                     dt);
   }
 
 

@@ -10,31 +10,49 @@ Prandtl's 2 + pi, and the wall time.
   strip_footing.py --exe build/dealii-mpm                   the ladder
   strip_footing.py --exe ... --cells 10 --check --max-error 0.12
                                                             a ctest assertion
+  strip_footing.py --exe ... --footing rigid                the footing as a
+                                    rigid body one cell thick, pushed at the
+                                    same speed, rough contact (mu = 100)
 """
 import argparse, math, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import cost, run_scene  # noqa: E402
+from scene_runner import cost, overrides, run_scene, sweep_arguments  # noqa: E402
 
 PRANDTL = 2 + math.pi
 
 
-def run(exe, per_half_width, end_time):
+def rigid_footing(per_half_width):
+    """The footing as a rigid body on the soil's surface instead of the
+    grid region: one cell thick, as wide, the same speed, rough."""
+    h = 0.5 / per_half_width
+    return ["-s", "Boundary conditions/Velocity region/enabled=false",
+            "-s", "Bodies/number of bodies=2",
+            "-s", "Bodies/Body 1/lower corner=0, 3",
+            "-s", "Bodies/Body 1/upper corner=0.5, %g" % (3 + h),
+            "-s", "Bodies/Body 1/rigid velocity=0; -v",
+            "-s", "Contact/friction coefficient=100"]
+
+
+def run(exe, per_half_width, end_time, footing="region", extra=()):
     # The grid is 5 m x 3.5 m and the footing's half width 0.5 m.
     n = per_half_width
     r = run_scene(exe, "plasticity/strip_footing.prm", [
         "-s", "Grid/cells=%d,%d" % (10 * n, 7 * n),
-        "-s", "Simulation/end time=%g" % end_time], fields="plastic strain")
+        "-s", "Simulation/end time=%g" % end_time] +
+        (rigid_footing(n) if footing == "rigid" else []) + list(extra),
+        fields="plastic strain")
     rows = r.rows
     c, half_width = 1e4, 0.5
-    q = [-float(row["region_force_y"]) / half_width / c for row in rows]
+    column = "region_force_y" if footing == "region" else "rigid1_force_y"
+    q = [-float(row[column]) / half_width / c for row in rows]
     return (max(q),) + cost(r)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--exe", required=True)
+    sweep_arguments(parser)
     parser.add_argument("--cells", default="5,10,20",
                         help="cells across the half width, comma-separated")
     parser.add_argument("--end-time", type=float, default=3.0,
@@ -43,13 +61,15 @@ def main():
                         help="fail unless every peak lies within --max-error "
                              "of Prandtl's value and above it")
     parser.add_argument("--max-error", type=float, default=0.05)
+    parser.add_argument("--footing", choices=("region", "rigid"),
+                        default="region")
     a = parser.parse_args()
 
     print("cells_per_half_width,h,peak_q_over_c,prandtl,relative_error,"
           "wall_seconds,ns_per_particle_step")
     ok = True
     for n in [int(x) for x in a.cells.split(",")]:
-        peak, wall, ns = run(a.exe, n, a.end_time)
+        peak, wall, ns = run(a.exe, n, a.end_time, a.footing, overrides(a))
         error = peak / PRANDTL - 1
         print("%d,%g,%.5f,%.5f,%.5f,%.2f,%.1f" %
               (n, 0.5 / n, peak, PRANDTL, error, wall, ns), flush=True)

@@ -89,9 +89,13 @@ namespace mpm
     /// its bounding box (2 axis + 1 for the upper face), or the points
     /// where @p loaded_points is > 0; neither for a mesh body, whose
     /// surface is its 'pressure boundary ids'.
-    std::string                          loaded_surface; ///< as given
-    unsigned int                         loaded_face = numbers::invalid_unsigned_int;
+    std::string  loaded_surface; ///< as given
+    unsigned int loaded_face = numbers::invalid_unsigned_int;
     std::shared_ptr<FunctionParser<dim>> loaded_points;
+    /// A rigid body's prescribed velocity v(t) (expressions in t); null for
+    /// a deformable body. A rigid body keeps its shape and moves with it,
+    /// acting on the others through contact (see contact/multi_field.h).
+    std::shared_ptr<FunctionParser<dim>> rigid_velocity;
     /// The scene's named constants, for every expression.
     std::map<std::string, double>  constants;
     std::string                    material_name;

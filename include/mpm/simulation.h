@@ -55,19 +55,21 @@ namespace mpm
     VelocityRegionParameters<dim>    velocity_region_parameters;
     RigidWallParameters<dim>         rigid_wall_parameters;
     VirtualFluidParameters<dim>      virtual_fluid_parameters;
+    ContactParameters<dim>           contact_parameters;
     OutputParameters                 output_parameters;
     VerificationParameters           verification_parameters;
 
-    std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
-    std::unique_ptr<BackgroundGrid<dim>> grid;
-    std::unique_ptr<MaterialPoints<dim>> points;
-    std::unique_ptr<VelocityRegion<dim>> velocity_region;
-    std::unique_ptr<RigidWall<dim>>      rigid_wall;
-    std::unique_ptr<VirtualFluid<dim>>   virtual_fluid;
-    std::unique_ptr<TimeIntegrator<dim>> integrator;
-    std::unique_ptr<Verification<dim>>   verification;
-    std::unique_ptr<Output<dim>>         output;
-    double                               last_output_time = -1;
+    std::unique_ptr<TimerOutput>            timer; ///< made in run(), see there
+    std::unique_ptr<BackgroundGrid<dim>>    grid;
+    std::unique_ptr<MaterialPoints<dim>>    points;
+    std::unique_ptr<VelocityRegion<dim>>    velocity_region;
+    std::unique_ptr<RigidWall<dim>>         rigid_wall;
+    std::unique_ptr<VirtualFluid<dim>>      virtual_fluid;
+    std::unique_ptr<MultiFieldContact<dim>> contact;
+    std::unique_ptr<TimeIntegrator<dim>>    integrator;
+    std::unique_ptr<Verification<dim>>      verification;
+    std::unique_ptr<Output<dim>>            output;
+    double                                  last_output_time = -1;
   };
 } // namespace mpm
 

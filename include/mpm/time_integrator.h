@@ -11,6 +11,7 @@
 #include <mpm/boundary_conditions/rigid_wall.h>
 #include <mpm/boundary_conditions/velocity_region.h>
 #include <mpm/boundary_conditions/virtual_fluid.h>
+#include <mpm/contact/multi_field.h>
 #include <mpm/material_points.h>
 
 namespace mpm
@@ -93,7 +94,8 @@ namespace mpm
                    TimerOutput                     &timer,
                    MPI_Comm                         comm,
                    RigidWall<dim>                  *rigid_wall    = nullptr,
-                   VirtualFluid<dim>               *virtual_fluid = nullptr);
+                   VirtualFluid<dim>               *virtual_fluid = nullptr,
+                   MultiFieldContact<dim>          *contact       = nullptr);
 
     /// Advance by one step, of at most @p max_dt. Throws RunError (on all
     /// ranks) with a diagnosis if the new state is not sound.
@@ -121,17 +123,12 @@ namespace mpm
       return n_removed;
     }
 
-    /// Mass and latest velocity of locally owned node @p i (grid output).
+    /// Mass and latest velocity (of the centre of mass of its fields) of
+    /// locally owned node @p i (grid output).
     double
-    nodal_mass(const unsigned int i) const
-    {
-      return grid_velocity.local_element(n_velocities * i + node_mass);
-    }
+    nodal_mass(const unsigned int i) const;
     double
-    nodal_velocity(const unsigned int i, const unsigned int d) const
-    {
-      return grid_velocity.local_element(n_velocities * i + v_new + d);
-    }
+    nodal_velocity(const unsigned int i, const unsigned int d) const;
 
     /// One P2G -> G2P round trip with no time step and no forces: what
     /// the transfer alone does to the points' velocities (rigid rotation
@@ -186,6 +183,24 @@ namespace mpm
                       const unsigned int slot);
     void
     update_stresses(const double dt);
+    /// Multi-body contact and rigid bodies at every owned node where a
+    /// body has a field of its own; @p dt > 0 at the force update, where
+    /// the rigid bodies' reactions are measured.
+    void
+    apply_contact(const unsigned int slot, const double dt);
+    /// The field a point scatters into and gathers from.
+    unsigned int
+    field_of(const double *q) const
+    {
+      return n_fields == 1 ? 0 : field_of_body[q[points.layout().body]];
+    }
+    /// Offset of node @p node's field @p field in the nodal vectors, in
+    /// units of their per-field stride.
+    unsigned int
+    slot_of(const unsigned int node, const unsigned int field) const
+    {
+      return n_fields * node + field;
+    }
     /// Coulomb contact of the nodal velocity @p v with grid face @p face.
     static void
     apply_coulomb_contact(double *v, const unsigned int face, const double mu);
@@ -209,14 +224,18 @@ namespace mpm
     body_force(const double *q) const;
     /// Fill each point's 'point load' field for the coming step: the
     /// pressure and traction on a loaded surface at the point's position
-    /// and the rigid wall's contact force. A pass of its own, only in scenes with such
-    /// loads, so that the scatter adds one vector and needs no position.
+    /// and the rigid wall's contact force. A pass of its own, only in scenes
+    /// with such loads, so that the scatter adds one vector and needs no
+    /// position.
     void
     make_point_loads(const double dt);
-    /// L at a point from the nodal velocities in @p slot (small-mass guard).
+    /// L at a point from the nodal velocities in @p slot of @p field
+    /// (small-mass guard).
     template <typename Stencil>
     Tensor<2, dim>
-    velocity_gradient(const Stencil &s, const unsigned int slot) const;
+    velocity_gradient(const Stencil     &s,
+                      const unsigned int slot,
+                      const unsigned int field) const;
     /// Store L, update volume and F by I + dt L; note a failure if the
     /// point would invert.
     template <typename Iterator>
@@ -234,8 +253,18 @@ namespace mpm
     RigidWall<dim> *rigid_wall;
     /// Null, or a fluid acting on the bodies' surface (only if enabled).
     VirtualFluid<dim> *virtual_fluid;
-    TimerOutput    &timer;
-    MPI_Comm        comm;
+    /// Null, or the multi-body contact (only if a body has its own field).
+    MultiFieldContact<dim> *contact;
+    /// Velocity fields per node: 1, or 1 + the bodies with their own. Each
+    /// nodal vector holds the fields of a node one after the other.
+    unsigned int              n_fields;
+    std::vector<unsigned int> field_of_body;
+    /// Multi-field only: per node and field, sum_p m_p grad phi_I(x_p)
+    /// (dim; minus the gradient of the field's nodal mass) and the volume
+    /// sum_p V_p phi_I(x_p).
+    LinearAlgebra::distributed::Vector<double> contact_data;
+    TimerOutput                               &timer;
+    MPI_Comm                                   comm;
 
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;
@@ -244,8 +273,8 @@ namespace mpm
     /// function), and the fluid's nodal forces.
     LinearAlgebra::distributed::Vector<double> fluid_volume, support_volume,
       fluid_force;
-    Tensor<1, dim> fluid_force_total; ///< this step's, on owned nodes
-    std::vector<double>                        wave_modulus_of_body;
+    Tensor<1, dim>      fluid_force_total; ///< this step's, on owned nodes
+    std::vector<double> wave_modulus_of_body;
     /// Impedances rho c_p and rho c_s of the absorbing faces.
     double normal_impedance = 0, shear_impedance = 0;
     /// Each body's pressure and traction on its loaded surface (null:

@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""A disk on an incline under multi-body contact (rolling_disk.prm).
+
+Prints one CSV row per run: friction coefficient, cells across the disk's
+radius, the acceleration of the disk's centre along the incline (a linear
+fit of momentum_x / disk mass over t in [0.05, 0.4] s: the floor is rigid
+and does not move), the exact value (rolling: (2/3) g sin(theta) =
+3.270 m/s^2 when mu >= tan(theta)/3; sliding: g (sin(theta) - mu
+cos(theta)), at least 0), the relative error, and the largest speed of the
+disk normal to the incline (bouncing) over that interval.
+
+  rolling_disk.py --exe build/dealii-mpm --mu 0,1 --cells 5,10
+  rolling_disk.py --exe ... --mu 0 --check --max-error 0.02
+"""
+import argparse, math, os, sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+
+G, THETA, RADIUS = 9.81, math.pi / 6, 0.1
+FLOOR_MASS = 1000 * 1.2 * 0.04  # the rigid floor box of rolling_disk.prm
+
+
+def exact(mu):
+    rolling = 2 / 3 * G * math.sin(THETA)
+    if mu >= math.tan(THETA) / 3:
+        return rolling
+    return max(0, G * (math.sin(THETA) - mu * math.cos(THETA)))
+
+
+def run(exe, mu, per_radius, extra):
+    n = per_radius
+    r = run_scene(exe, "contact/rolling_disk.prm", [
+        "-s", "Contact/friction coefficient=%g" % mu,
+        "-s", "Grid/cells=%d, %d" % (12 * n, 3 * n)] + extra)
+    samples = []
+    bounce = 0
+    for row in r.rows:
+        t = float(row["time"])
+        m = float(row["mass"]) - FLOOR_MASS
+        if t >= 0.05 - 1e-9:
+            samples.append((t, float(row["momentum_x"]) / m))
+            bounce = max(bounce, abs(float(row["momentum_y"]) / m))
+    mean_t = sum(t for t, _ in samples) / len(samples)
+    mean_v = sum(v for _, v in samples) / len(samples)
+    slope = sum((t - mean_t) * (v - mean_v) for t, v in samples) / \
+        sum((t - mean_t) ** 2 for t, _ in samples)
+    return slope, bounce
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    sweep_arguments(parser)
+    parser.add_argument("--mu", default="0,1")
+    parser.add_argument("--cells", default="5",
+                        help="cells across the disk's radius")
+    parser.add_argument("--check", action="store_true")
+    parser.add_argument("--max-error", type=float, default=0.02)
+    a = parser.parse_args()
+    print("mu,cells_per_radius,acceleration,exact,relative_error,max_normal_speed")
+    ok = True
+    for mu in [float(x) for x in a.mu.split(",")]:
+        for n in [int(x) for x in a.cells.split(",")]:
+            acceleration, bounce = run(a.exe, mu, n, overrides(a))
+            e = acceleration / exact(mu) - 1
+            print("%g,%d,%.4f,%.4f,%.2e,%.3f" % (mu, n, acceleration, exact(mu), e,
+                                                 bounce), flush=True)
+            ok = ok and abs(e) <= a.max_error
+    if a.check and not ok:
+        print("FAILED: an acceleration is off by more than %g" % a.max_error)
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()

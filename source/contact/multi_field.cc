@@ -1,0 +1,249 @@
+#include <mpm/contact/multi_field.h>
+#include <mpm/parameters.h>
+
+#include <cmath>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  ContactParameters<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry("bodies",
+                      "",
+                      Patterns::Anything(),
+                      "Bodies with a velocity field of their own on the "
+                      "grid (multi-body contact, Bardenhagen et al. 2000), "
+                      "comma-separated indices; they touch, slide with "
+                      "'friction coefficient' and separate freely. The "
+                      "other bodies share one field, as with no contact. "
+                      "Rigid bodies always have their own field. Empty: "
+                      "none.");
+    prm.declare_entry("friction coefficient",
+                      "0",
+                      Patterns::Anything(),
+                      "Coulomb coefficient mu >= 0 between fields in "
+                      "contact.");
+    prm.declare_entry("rigid share",
+                      "0.2",
+                      Patterns::Anything(),
+                      "A rigid body acts at a node only where its points "
+                      "fill at least this fraction of the node's support, "
+                      "in [0, 1]: a wide stencil (GIMP, B-splines) carries "
+                      "its field a node row into the body it presses, "
+                      "where it would act before the surfaces meet. 0: "
+                      "wherever it has mass (Bardenhagen's original).");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  ContactParameters<dim>::parse_parameters(ParameterHandler  &prm,
+                                           const unsigned int n_bodies)
+  {
+    prm.enter_subsection("Contact");
+    const std::string list = prm.get("bodies");
+    own_field.assign(n_bodies, false);
+    for (const auto &item : Utilities::split_string_list(list, ','))
+      {
+        int b = -1;
+        try
+          {
+            b = Utilities::string_to_int(item);
+          }
+        catch (...)
+          {
+          }
+        if (b < 0 || b >= static_cast<int>(n_bodies))
+          throw InputError("Contact/bodies",
+                           list,
+                           "must be comma-separated body indices in [0, " +
+                             std::to_string(n_bodies) + ")");
+        own_field[b] = true;
+      }
+    friction_coefficient = Parse::bounded_double(
+      prm, "Contact", "friction coefficient", 0, 1e300);
+    rigid_share = Parse::bounded_double(prm, "Contact", "rigid share", 0, 1);
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  MultiFieldContact<dim>::MultiFieldContact(
+    const ContactParameters<dim>           &parameters,
+    const std::vector<BodyParameters<dim>> &bodies)
+    : mu(parameters.friction_coefficient)
+    , rigid_share(parameters.rigid_share)
+    , field_count(1)
+    , body_field(bodies.size(), 0)
+    , rigid_of_field(1, -1)
+  {
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (parameters.own_field[b] || bodies[b].rigid_velocity)
+        {
+          body_field[b] = field_count++;
+          rigid_of_field.push_back(-1);
+          if (bodies[b].rigid_velocity)
+            {
+              rigid_of_field.back() = rigid_body_list.size();
+              rigid_body_list.push_back(b);
+              rigid_velocity.push_back(bodies[b].rigid_velocity);
+            }
+        }
+    current_rigid_velocity.resize(rigid_body_list.size());
+    meters.resize(rigid_body_list.size());
+    set_time(0);
+  }
+
+
+  template <int dim>
+  void
+  MultiFieldContact<dim>::set_time(const double t)
+  {
+    for (unsigned int r = 0; r < rigid_velocity.size(); ++r)
+      {
+        rigid_velocity[r]->set_time(t);
+        for (unsigned int d = 0; d < dim; ++d)
+          current_rigid_velocity[r][d] =
+            rigid_velocity[r]->value(Point<dim>(), d);
+      }
+  }
+
+
+  template <int dim>
+  void
+  MultiFieldContact<dim>::set_rigid_velocities(double            *node,
+                                               const unsigned int stride,
+                                               const unsigned int slot) const
+  {
+    for (unsigned int f = 1; f < field_count; ++f)
+      if (rigid_of_field[f] >= 0 && node[f * stride] > 0)
+        for (unsigned int d = 0; d < dim; ++d)
+          node[f * stride + slot + d] =
+            current_rigid_velocity[rigid_of_field[f]][d];
+  }
+
+
+  template <int dim>
+  void
+  MultiFieldContact<dim>::correct_node(
+    double                      *node,
+    const unsigned int           stride,
+    const unsigned int           slot,
+    const double                *data,
+    const double                 support_volume,
+    std::vector<Tensor<1, dim>> &rigid_impulse) const
+  {
+    set_rigid_velocities(node, stride, slot);
+    constexpr unsigned int data_stride = dim + 1;
+    unsigned int           n_present   = 0;
+    int                    rigid       = -1; // a rigid field here, if any
+    double                 mass = 0;
+    Tensor<1, dim>         momentum, total_gradient;
+    // A rigid field that reaches the node with a sliver of its points (a
+    // wide stencil reaching a row into the other body) is not at its
+    // surface there: it takes no part.
+    const double min_volume = rigid_share * support_volume;
+    auto takes_part = [&](const unsigned int f) {
+      return node[f * stride] > 0 &&
+             (rigid_of_field[f] < 0 ||
+              data[f * data_stride + dim] >= min_volume);
+    };
+    for (unsigned int f = 0; f < field_count; ++f)
+      {
+        const double m = node[f * stride];
+        if (!takes_part(f))
+          continue;
+        ++n_present;
+        if (rigid_of_field[f] >= 0 && rigid < 0)
+          rigid = f;
+        mass += m;
+        momentum += m * Fields::vector<dim>(node + f * stride + slot);
+        total_gradient += Fields::vector<dim>(data + f * data_stride);
+      }
+    if (n_present < 2)
+      return;
+    // The velocity the fields must not move into: a rigid body's, or the
+    // centre of mass's.
+    const Tensor<1, dim> reference =
+      rigid >= 0 ? Fields::vector<dim>(node + rigid * stride + slot) :
+                   momentum / mass;
+    for (unsigned int f = 0; f < field_count; ++f)
+      {
+        double *field = node + f * stride;
+        if (!takes_part(f) || rigid_of_field[f] >= 0)
+          continue;
+        // gradients holds sum_p m_p grad phi_I(x_p) = -grad m at the node.
+        // Against a rigid body its own normal is used: its shape is exact
+        // and does not change, while the deformable body's mass gradient
+        // tilts at the edges of the contact and would push it off.
+        const Tensor<1, dim> own = Fields::vector<dim>(data + f * data_stride);
+        Tensor<1, dim>       n =
+          rigid >= 0 ? -Fields::vector<dim>(data + rigid * data_stride) :
+                       own - (total_gradient - own);
+        const double         norm = n.norm();
+        if (!(norm > 0))
+          continue;
+        n /= norm;
+        const Tensor<1, dim> v        = Fields::vector<dim>(field + slot);
+        const Tensor<1, dim> relative = v - reference;
+        const double         approach = relative * n;
+        if (!(approach > 0))
+          continue;
+        Tensor<1, dim>       change     = -approach * n;
+        const Tensor<1, dim> tangential = relative - approach * n;
+        const double         slide      = tangential.norm();
+        if (slide > 0)
+          change -= std::min(1., mu * approach / slide) * tangential;
+        Fields::store(Tensor<1, dim>(v + change), field + slot);
+        if (rigid >= 0)
+          rigid_impulse[rigid_of_field[rigid]] += field[0] * change;
+      }
+  }
+
+
+  template <int dim>
+  void
+  MultiFieldContact<dim>::add_rigid_impulses(
+    const std::vector<Tensor<1, dim>> &impulses)
+  {
+    for (unsigned int r = 0; r < meters.size(); ++r)
+      meters[r].add(impulses[r]);
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  MultiFieldContact<dim>::columns() const
+  {
+    std::vector<std::string> c;
+    for (const unsigned int b : rigid_body_list)
+      for (const auto &name :
+           ReactionMeter<dim>::columns("rigid" + std::to_string(b) + "_force"))
+        c.push_back(name);
+    return c;
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  MultiFieldContact<dim>::mean_forces_since_last_call(const double time,
+                                                      MPI_Comm     comm)
+  {
+    std::vector<double> values;
+    for (auto &meter : meters)
+      for (const double f : meter.mean_since_last_call(time, comm))
+        values.push_back(f);
+    return values;
+  }
+
+
+  template struct ContactParameters<1>;
+  template struct ContactParameters<2>;
+  template struct ContactParameters<3>;
+  template class MultiFieldContact<1>;
+  template class MultiFieldContact<2>;
+  template class MultiFieldContact<3>;
+} // namespace mpm
