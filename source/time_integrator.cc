@@ -505,72 +505,93 @@ namespace mpm
     const bool           apic    = prm.transfer == Transfer::apic;
     // Local copies: the compiler cannot tell that the members do not change
     // while the loop writes the nodal sums through a double *.
-    const bool with_body_forces   = has_body_forces;
-    const bool with_point_loads   = l.point_load != FieldLayout::absent;
-    const bool with_surface_loads = l.load_moment != FieldLayout::absent;
+    const bool with_body_forces         = has_body_forces;
+    const bool with_point_loads         = l.point_load != FieldLayout::absent;
+    const bool with_surface_loads       = l.load_moment != FieldLayout::absent;
+    const unsigned int  fields_per_node = n_fields;
+    const unsigned int *fields_of_body  = field_of_body.data();
     for (auto *f : body_forces)
       if (f != nullptr)
         f->set_time(t);
-    for_each_point(basis, [&](auto &, const double *q, const auto &s) {
-      const double       m     = q[l.mass];
-      const unsigned int field = field_of(q);
-      if (mass_and_momentum)
-        {
-          const Tensor<1, dim> mv = m * Fields::vector<dim>(q + l.velocity);
-          // APIC: the point's velocity field v_p + C_p (x - x_p), sampled
-          // at the node.
-          Tensor<2, dim> mC;
-          if (apic)
-            mC = m * Fields::tensor<dim>(q + l.affine_velocity);
-          for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-            {
-              double *node           = g + n_sums * slot_of(s.nodes[v], field);
-              const Tensor<1, dim> p = apic ? mv + mC * s.node_offset(v) : mv;
-              node[mass] += s.weights[v] * m;
-              for (unsigned int d = 0; d < dim; ++d)
-                node[momentum + d] += s.weights[v] * p[d];
-            }
-          // Contact normals and volumes of each field.
-          if (with_gradients)
-            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-              {
-                double *data =
-                  contact_data.begin() + (dim + 1) * slot_of(s.nodes[v], field);
-                for (unsigned int d = 0; d < dim; ++d)
-                  data[d] += m * s.gradients[v][d];
-                data[dim] += s.weights[v] * q[l.volume];
-              }
-        }
-      if (forces)
-        {
-          // Internal force with the current volume and Cauchy stress.
-          const SymmetricTensor<2, dim> Vsigma =
-            q[l.volume] * Fields::symmetric<dim>(q + l.stress);
-          Tensor<1, dim> mg =
-            m * (with_body_forces ? gravity + body_force(q) : gravity);
-          if (with_point_loads)
-            mg += Fields::vector<dim>(q + l.point_load);
-          auto add_forces = [&](const auto &stress_term) {
-            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-              {
-                const Tensor<1, dim> f =
-                  s.weights[v] * mg - stress_term * s.gradients[v];
-                double *node = g + n_sums * slot_of(s.nodes[v], field) + force;
-                for (unsigned int d = 0; d < dim; ++d)
-                  node[d] += f[d];
-              }
-          };
-          // A surface load F acts at the surface, d from the point:
-          // F phi(x + d) = F phi(x) + (F (x) d) grad phi(x) to first order
-          // (exact within a cell for the linear basis), so the moment
-          // F (x) d joins the stress term.
-          if (with_surface_loads)
-            add_forces(Tensor<2, dim>(Vsigma) -
-                       Fields::tensor<dim>(q + l.load_moment));
+    // Compiled once for one field and once for several, so that a scene
+    // without contact carries nothing of it.
+    auto scatter = [&](auto several_fields) {
+      constexpr bool multi_field = decltype(several_fields)::value;
+      for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+        const double m     = q[l.mass];
+        unsigned int field = 0;
+        if constexpr (multi_field)
+          field = fields_of_body[static_cast<unsigned int>(q[l.body])];
+        // The nodal sums of stencil node v, in this point's field.
+        auto sums_of = [&](const unsigned int v) {
+          if constexpr (multi_field)
+            return g + n_sums * (fields_per_node * s.nodes[v] + field);
           else
-            add_forces(Vsigma);
-        }
-    });
+            return g + n_sums * s.nodes[v];
+        };
+        if (mass_and_momentum)
+          {
+            const Tensor<1, dim> mv = m * Fields::vector<dim>(q + l.velocity);
+            // APIC: the point's velocity field v_p + C_p (x - x_p), sampled
+            // at the node.
+            Tensor<2, dim> mC;
+            if (apic)
+              mC = m * Fields::tensor<dim>(q + l.affine_velocity);
+            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+              {
+                double              *node = sums_of(v);
+                const Tensor<1, dim> p = apic ? mv + mC * s.node_offset(v) : mv;
+                node[mass] += s.weights[v] * m;
+                for (unsigned int d = 0; d < dim; ++d)
+                  node[momentum + d] += s.weights[v] * p[d];
+              }
+            // Contact normals and volumes of each field.
+            if constexpr (multi_field)
+              if (with_gradients)
+                for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                  {
+                    double *data = contact_data.begin() +
+                                   (dim + 1) * slot_of(s.nodes[v], field);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      data[d] += m * s.gradients[v][d];
+                    data[dim] += s.weights[v] * q[l.volume];
+                  }
+          }
+        if (forces)
+          {
+            // Internal force with the current volume and Cauchy stress.
+            const SymmetricTensor<2, dim> Vsigma =
+              q[l.volume] * Fields::symmetric<dim>(q + l.stress);
+            Tensor<1, dim> mg =
+              m * (with_body_forces ? gravity + body_force(q) : gravity);
+            if (with_point_loads)
+              mg += Fields::vector<dim>(q + l.point_load);
+            auto add_forces = [&](const auto &stress_term) {
+              for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                {
+                  const Tensor<1, dim> f =
+                    s.weights[v] * mg - stress_term * s.gradients[v];
+                  double *node = sums_of(v) + force;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    node[d] += f[d];
+                }
+            };
+            // A surface load F acts at the surface, d from the point:
+            // F phi(x + d) = F phi(x) + (F (x) d) grad phi(x) to first order
+            // (exact within a cell for the linear basis), so the moment
+            // F (x) d joins the stress term.
+            if (with_surface_loads)
+              add_forces(Tensor<2, dim>(Vsigma) -
+                         Fields::tensor<dim>(q + l.load_moment));
+            else
+              add_forces(Vsigma);
+          }
+      });
+    };
+    if (n_fields > 1)
+      scatter(std::true_type());
+    else
+      scatter(std::false_type());
     grid_sums.compress(VectorOperation::add);
     if (with_gradients)
       contact_data.compress(VectorOperation::add);
@@ -895,12 +916,11 @@ namespace mpm
   template <typename Stencil>
   inline Tensor<2, dim>
   TimeIntegrator<dim>::velocity_gradient(const Stencil     &s,
-                                         const unsigned int slot,
-                                         const unsigned int field) const
+                                         const double      *u,
+                                         const unsigned int stride,
+                                         const unsigned int slot) const
   {
-    const double      *u = grid_velocity.get_values() + n_velocities * field;
-    const unsigned int stride = n_fields * n_velocities;
-    Tensor<1, dim>     v_point;
+    Tensor<1, dim> v_point;
     for (unsigned int v = 0; v < s.weights.size(); ++v)
       v_point +=
         s.weights[v] * Fields::vector<dim>(u + stride * s.nodes[v] + slot);
@@ -926,18 +946,25 @@ namespace mpm
                                            const bool   kinematics)
   {
     TimerOutput::Scope scope(timer, "G2P");
-    const FieldLayout &l      = points.layout();
-    const double      *u_all  = grid_velocity.get_values();
-    const unsigned int stride = n_fields * n_velocities;
-    const double       alpha  = prm.flip_fraction;
+    const FieldLayout &l     = points.layout();
+    const double      *u_all = grid_velocity.get_values();
+    const double       alpha = prm.flip_fraction;
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
-    // Compiled once for each transfer, so that the PIC/FLIP loop carries
-    // nothing of APIC's.
-    auto gather = [&](auto apic) {
+    const unsigned int                         fields_per_node = n_fields;
+    const unsigned int *fields_of_body = field_of_body.data();
+    // Compiled once for each transfer and for one or several fields, so
+    // that the PIC/FLIP loop carries nothing of APIC's, nor a scene
+    // without contact anything of it.
+    auto gather = [&](auto apic, auto several_fields) {
+      constexpr bool     multi_field = decltype(several_fields)::value;
+      const unsigned int stride =
+        multi_field ? fields_per_node * n_velocities : n_velocities;
       for_each_point(basis, [&](auto &p, double *q, const auto &s) {
-        const unsigned int field = field_of(q);
-        const double      *u     = u_all + n_velocities * field;
-        Tensor<1, dim>     v_grid, dv_grid;
+        const double *u = u_all;
+        if constexpr (multi_field)
+          u +=
+            n_velocities * fields_of_body[static_cast<unsigned int>(q[l.body])];
+        Tensor<1, dim> v_grid, dv_grid;
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           {
             const double        *node = u + stride * s.nodes[v];
@@ -968,13 +995,24 @@ namespace mpm
           }
         p->set_location(p->get_location() + dt * v_grid);
         if (kinematics)
-          apply_velocity_gradient(p, q, velocity_gradient(s, v_new, field), dt);
+          apply_velocity_gradient(p,
+                                  q,
+                                  velocity_gradient(s, u, stride, v_new),
+                                  dt);
       });
     };
-    if (prm.transfer == Transfer::apic)
-      gather(std::true_type());
+    const bool apic = prm.transfer == Transfer::apic;
+    if (n_fields > 1)
+      {
+        if (apic)
+          gather(std::true_type(), std::true_type());
+        else
+          gather(std::false_type(), std::true_type());
+      }
+    else if (apic)
+      gather(std::true_type(), std::false_type());
     else
-      gather(std::false_type());
+      gather(std::false_type(), std::false_type());
   }
 
 
@@ -989,7 +1027,11 @@ namespace mpm
     for_each_point(basis, [&](auto &p, double *q, const auto &s) {
       apply_velocity_gradient(p,
                               q,
-                              velocity_gradient(s, slot, field_of(q)),
+                              velocity_gradient(s,
+                                                grid_velocity.get_values() +
+                                                  n_velocities * field_of(q),
+                                                n_fields * n_velocities,
+                                                slot),
                               dt);
     });
   }

@@ -229,13 +229,15 @@ namespace mpm
     /// position.
     void
     make_point_loads(const double dt);
-    /// L at a point from the nodal velocities in @p slot of @p field
-    /// (small-mass guard).
+    /// L at a point from the nodal velocities in @p slot of the nodal
+    /// array @p u (the point's field, node stride @p stride; small-mass
+    /// guard).
     template <typename Stencil>
     Tensor<2, dim>
     velocity_gradient(const Stencil     &s,
-                      const unsigned int slot,
-                      const unsigned int field) const;
+                      const double      *u,
+                      const unsigned int stride,
+                      const unsigned int slot) const;
     /// Store L, update volume and F by I + dt L; note a failure if the
     /// point would invert.
     template <typename Iterator>
