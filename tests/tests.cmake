@@ -422,3 +422,10 @@ mpm_test(bad_contact_bodies PRM two_disks.prm EXIT 1
 mpm_test(bad_rigid_velocity PRM two_disks.prm EXIT 1
   ARGS -s "Bodies/Body 1/rigid velocity=0.1*foo"
   ERROR "parameter 'Bodies/Body 1/rigid velocity' = '0.1\\*foo[^']*': is not a valid expression")
+#     A rigid body on 2 ranks: the rolling disk's history (its floor is
+#     rigid, its force summed over ranks) is the 1-rank one.
+set(rolling_coarse ARGS -s "Simulation/end time=0.1" -s "Output/interval=0.025"
+  -s "Contact/friction coefficient=1")
+mpm_test(rolling_disk_history PRM ../benchmarks/contact/rolling_disk.prm ${rolling_coarse})
+mpm_test(rolling_disk_history_mpi2 PRM ../benchmarks/contact/rolling_disk.prm NP 2
+  REFERENCE rolling_disk_history.output RELTOL 1e-7 ${rolling_coarse})
