@@ -119,15 +119,16 @@ namespace mpm
     for (unsigned int f = 0; f < 2 * dim; ++f)
       {
         const std::string b = prm.get(std::string("boundary ") + face_names[f]);
-        boundary[f]         = (b == "free"    ? BoundaryType::free
-                               : b == "fixed" ? BoundaryType::fixed
-                               : b == "slip"  ? BoundaryType::slip
+        boundary[f]         = (b == "free"       ? BoundaryType::free
+                               : b == "fixed"    ? BoundaryType::fixed
+                               : b == "slip"     ? BoundaryType::slip
                                : b == "friction" ? BoundaryType::friction
                                                  : BoundaryType::absorbing);
       }
     friction_coefficient =
       Parse::bounded_double(prm, "Grid", "friction coefficient", 0, 1e300);
-    const double body = Parse::bounded_double(prm, "Grid", "absorbing body", 0, 1000);
+    const double body =
+      Parse::bounded_double(prm, "Grid", "absorbing body", 0, 1000);
     if (body != std::floor(body))
       throw InputError("Grid/absorbing body",
                        prm.get("absorbing body"),
@@ -294,8 +295,8 @@ namespace mpm
   void
   BackgroundGrid<dim>::build_node_constraints()
   {
-    std::vector<unsigned int>            mask(n_owned_nodes, 0u);
-    std::vector<unsigned int>            friction_faces(n_owned_nodes, 0u);
+    std::vector<unsigned int> mask(n_owned_nodes, 0u);
+    std::vector<unsigned int> friction_faces(n_owned_nodes, 0u);
     // Per owned node, the area share of each absorbing face (a face's
     // area is split equally among its 2^(dim-1) vertices). An owned node's
     // faces may belong to ghost cells, so those are visited too; the
@@ -350,7 +351,8 @@ namespace mpm
           node_frictions.emplace_back(i, friction_faces[i]);
       }
     for (const auto &[node_and_face, area] : dashpot_area)
-      node_dashpots.push_back({node_and_face.first, node_and_face.second, area});
+      node_dashpots.push_back(
+        {node_and_face.first, node_and_face.second, area});
   }
 
 

@@ -36,8 +36,8 @@ namespace mpm
       }
     if (requests.point_load)
       l.point_load = add("point load", dim);
-    if (requests.wall_slip)
-      l.wall_slip = add("wall slip", dim);
+    if (requests.wall_slips > 0)
+      l.wall_slip = add("wall slip", dim * requests.wall_slips);
     return l;
   }
 

@@ -135,25 +135,29 @@ namespace
 
   /**
    * Read the scene in two passes: the first learns the number of bodies
-   * (and tolerates everything it does not know yet), the second declares
-   * that many bodies and reads strictly.
+   * and of rigid walls (and tolerates everything it does not know yet), the
+   * second declares that many and reads strictly.
    */
   void
   read_scene(ParameterHandler &prm, const CommandLine &c)
   {
-    unsigned int n_bodies = 1;
+    unsigned int n_bodies = 1, n_walls = 0;
     {
       ParameterHandler first;
       mpm::declare_scene_parameters(first, 1);
       first.parse_input(c.scene, "", true);
       for (const auto &[path, value] : c.overrides)
-        if (path == "Bodies/number of bodies")
+        if (path == "Bodies/number of bodies" ||
+            path == "Boundary conditions/number of rigid walls")
           apply_override(first, path, value);
       first.enter_subsection("Bodies");
       n_bodies = first.get_integer("number of bodies");
       first.leave_subsection();
+      first.enter_subsection("Boundary conditions");
+      n_walls = first.get_integer("number of rigid walls");
+      first.leave_subsection();
     }
-    mpm::declare_scene_parameters(prm, n_bodies);
+    mpm::declare_scene_parameters(prm, n_bodies, n_walls);
     prm.parse_input(c.scene);
     for (const auto &[path, value] : c.overrides)
       apply_override(prm, path, value);

@@ -11,7 +11,9 @@
 namespace mpm
 {
   void
-  declare_scene_parameters(ParameterHandler &prm, const unsigned int n_bodies)
+  declare_scene_parameters(ParameterHandler  &prm,
+                           const unsigned int n_bodies,
+                           const unsigned int n_walls)
   {
     prm.enter_subsection("Simulation");
     prm.declare_entry("dimension",
@@ -31,7 +33,19 @@ namespace mpm
     for (unsigned int b = 0; b < n_bodies; ++b)
       BodyParameters<2>::declare_parameters(prm, b);
     VelocityRegionParameters<2>::declare_parameters(prm);
-    RigidWallParameters<2>::declare_parameters(prm);
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry("number of rigid walls",
+                      "0",
+                      Patterns::Integer(0, 100),
+                      "Number of rigid walls; wall N is described in "
+                      "subsection 'Rigid wall N', N = 0, 1, ...: a plane at "
+                      "any angle to the grid acting on the material points "
+                      "by a penalty with Coulomb friction, its mean force "
+                      "from the material in statistics.csv (wall<N>_force_x, "
+                      "...).");
+    prm.leave_subsection();
+    for (unsigned int w = 0; w < n_walls; ++w)
+      RigidWallParameters<2>::declare_parameters(prm, w);
     VirtualFluidParameters<2>::declare_parameters(prm);
     ContactParameters<2>::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
@@ -54,7 +68,12 @@ namespace mpm
     for (unsigned int b = 0; b < n_bodies; ++b)
       body_parameters[b].parse_parameters(prm, b, grid_parameters);
     velocity_region_parameters.parse_parameters(prm);
-    rigid_wall_parameters.parse_parameters(prm);
+    prm.enter_subsection("Boundary conditions");
+    const unsigned int n_walls = prm.get_integer("number of rigid walls");
+    prm.leave_subsection();
+    rigid_wall_parameters.resize(n_walls);
+    for (unsigned int w = 0; w < n_walls; ++w)
+      rigid_wall_parameters[w].parse_parameters(prm, w);
     virtual_fluid_parameters.parse_parameters(prm, n_bodies);
     contact_parameters.parse_parameters(prm, n_bodies);
     output_parameters.parse_parameters(prm);
@@ -93,18 +112,26 @@ namespace mpm
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
     for (const auto &body : body_parameters)
       fields.surface_area = fields.surface_area || body.has_surface_loads();
-    fields.point_load = fields.surface_area || rigid_wall_parameters.enabled;
-    fields.wall_slip  = rigid_wall_parameters.enabled &&
-                       rigid_wall_parameters.friction_coefficient > 0;
-    points = std::make_unique<MaterialPoints<dim>>(*grid,
+    // Each wall with friction keeps a stick spring per point.
+    std::vector<unsigned int> slip_slot;
+    for (const auto &wall : rigid_wall_parameters)
+      slip_slot.push_back(wall.friction_coefficient > 0
+                            ? fields.wall_slips++
+                            : numbers::invalid_unsigned_int);
+    fields.point_load = fields.surface_area || !rigid_wall_parameters.empty();
+    points            = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,
                                                    fields,
                                                    comm);
     points->generate();
     velocity_region =
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
-    rigid_wall = std::make_unique<RigidWall<dim>>(rigid_wall_parameters,
-                                                  grid->min_cell_size());
+    for (unsigned int w = 0; w < rigid_wall_parameters.size(); ++w)
+      rigid_walls.push_back(std::make_unique<RigidWall<dim>>(
+        rigid_wall_parameters[w], grid->min_cell_size(), slip_slot[w]));
+    std::vector<RigidWall<dim> *> walls;
+    for (const auto &wall : rigid_walls)
+      walls.push_back(wall.get());
     virtual_fluid =
       std::make_unique<VirtualFluid<dim>>(virtual_fluid_parameters,
                                           integrator_parameters.gravity.norm(),
@@ -117,7 +144,7 @@ namespace mpm
                                                        *velocity_region,
                                                        *timer,
                                                        comm,
-                                                       rigid_wall.get(),
+                                                       walls,
                                                        virtual_fluid.get(),
                                                        contact.get());
     verification = std::make_unique<Verification<dim>>(
@@ -125,8 +152,9 @@ namespace mpm
     std::vector<std::string> columns = verification->columns();
     for (const auto &c : velocity_region->columns())
       columns.push_back(c);
-    for (const auto &c : rigid_wall->columns())
-      columns.push_back(c);
+    for (const auto &wall : rigid_walls)
+      for (const auto &c : wall->columns())
+        columns.push_back(c);
     for (const auto &c : virtual_fluid->columns())
       columns.push_back(c);
     for (const auto &c : contact->columns())
@@ -203,9 +231,10 @@ namespace mpm
     for (const double f :
          velocity_region->mean_force_since_last_call(integrator->time(), comm))
       extra.push_back(f);
-    for (const double f :
-         rigid_wall->mean_force_since_last_call(integrator->time(), comm))
-      extra.push_back(f);
+    for (const auto &wall : rigid_walls)
+      for (const double f :
+           wall->mean_force_since_last_call(integrator->time(), comm))
+        extra.push_back(f);
     for (const double f :
          virtual_fluid->mean_force_since_last_call(integrator->time(), comm))
       extra.push_back(f);

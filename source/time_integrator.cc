@@ -213,21 +213,20 @@ namespace mpm
 
   template <int dim>
   TimeIntegrator<dim>::TimeIntegrator(
-    const IntegratorParameters<dim> &parameters,
-    const BackgroundGrid<dim>       &grid,
-    MaterialPoints<dim>             &points,
-    VelocityRegion<dim>             &velocity_region,
-    TimerOutput                     &timer,
-    MPI_Comm                         comm,
-    RigidWall<dim>                  *rigid_wall,
-    VirtualFluid<dim>               *virtual_fluid,
-    MultiFieldContact<dim>          *contact)
+    const IntegratorParameters<dim>     &parameters,
+    const BackgroundGrid<dim>           &grid,
+    MaterialPoints<dim>                 &points,
+    VelocityRegion<dim>                 &velocity_region,
+    TimerOutput                         &timer,
+    MPI_Comm                             comm,
+    const std::vector<RigidWall<dim> *> &rigid_walls,
+    VirtualFluid<dim>                   *virtual_fluid,
+    MultiFieldContact<dim>              *contact)
     : prm(parameters)
     , grid(grid)
     , points(points)
     , velocity_region(velocity_region)
-    , rigid_wall(rigid_wall != nullptr && rigid_wall->enabled() ? rigid_wall
-                                                                : nullptr)
+    , rigid_walls(rigid_walls)
     , virtual_fluid(virtual_fluid != nullptr && virtual_fluid->enabled()
                       ? virtual_fluid
                       : nullptr)
@@ -708,9 +707,8 @@ namespace mpm
                                     Fields::vector<dim>(q + l.surface_offset)),
                       q + l.load_moment);
       }
-    if (rigid_wall)
-      rigid_wall->act_on_points(
-        points.handler(), l, wave_modulus_of_body, t, dt);
+    for (auto *wall : rigid_walls)
+      wall->act_on_points(points.handler(), l, wave_modulus_of_body, t, dt);
   }
 
 

@@ -78,7 +78,7 @@ namespace mpm
     // The dimension is not known here: the list is checked in Verification.
     exact_displacement =
       Utilities::split_string_list(prm.get("exact displacement"), ';');
-    amplitude   = Parse::bounded_double(prm, s, "amplitude", 0, 1e300, true);
+    amplitude    = Parse::bounded_double(prm, s, "amplitude", 0, 1e300, true);
     top_pressure = Parse::bounded_double(prm, s, "top pressure", 0, 1e300);
     error_bound  = Parse::bounded_double(prm, s, "error bound", 0, 1e300);
     energy_drift_bound =

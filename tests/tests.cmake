@@ -311,8 +311,8 @@ add_test(NAME inclined_plane_rigid_wall
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/contact/inclined_plane.py
     --exe $<TARGET_FILE:dealii-mpm> --cases 30/0.3,45/0.5 --check --max-error 0.02)
 mpm_test(bad_wall_normal PRM ../benchmarks/contact/inclined_plane.prm EXIT 1
-  ARGS -s "Boundary conditions/Rigid wall/normal=0, 0"
-  ERROR "parameter 'Boundary conditions/Rigid wall/normal' = '0, 0': must be a non-zero, finite vector")
+  ARGS -s "Boundary conditions/Rigid wall 0/normal=0, 0"
+  ERROR "parameter 'Boundary conditions/Rigid wall 0/normal' = '0, 0': must be a non-zero, finite vector")
 #    The rigid wall's history (the lattice-filled block dropping onto the
 #    plane and sliding), and 2 ranks reproduce it (wall force summed over
 #    ranks).
@@ -429,3 +429,15 @@ set(rolling_coarse ARGS -s "Simulation/end time=0.1" -s "Output/interval=0.025"
 mpm_test(rolling_disk_history PRM ../benchmarks/contact/rolling_disk.prm ${rolling_coarse})
 mpm_test(rolling_disk_history_mpi2 PRM ../benchmarks/contact/rolling_disk.prm NP 2
   REFERENCE rolling_disk_history.output RELTOL 1e-7 ${rolling_coarse})
+#     Several rigid walls: a disk at rest in a notch of two walls at +-45
+#     degrees loads each with (-+ m g / 2, -m g / 2) (measured to 1.4e-7);
+#     with friction on both (a stick spring per wall) the split is
+#     indeterminate and the walls' sum carries m g (measured to 1e-7).
+add_test(NAME v_notch_walls
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/contact/v_notch.py
+    --exe $<TARGET_FILE:dealii-mpm> --check --max-error 0.01)
+add_test(NAME v_notch_walls_friction
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/contact/v_notch.py
+    --exe $<TARGET_FILE:dealii-mpm> --check --max-error 0.01 --sum-only
+    -s "Boundary conditions/Rigid wall 0/friction coefficient=0.3"
+    -s "Boundary conditions/Rigid wall 1/friction coefficient=0.5")

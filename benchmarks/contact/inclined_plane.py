@@ -56,10 +56,10 @@ def run(exe, theta_deg, mu, end_time, extra):
         r = run_scene(exe, "contact/inclined_plane.prm", [
             "-s", "Bodies/Body 0/shape=mesh",
             "-s", "Bodies/Body 0/mesh file=" + mesh,
-            "-s", "Boundary conditions/Rigid wall/point=%.17g, %.17g" %
+            "-s", "Boundary conditions/Rigid wall 0/point=%.17g, %.17g" %
                   (P0[0] + offset * n[0], P0[1] + offset * n[1]),
-            "-s", "Boundary conditions/Rigid wall/normal=%.17g, %.17g" % n,
-            "-s", "Boundary conditions/Rigid wall/friction coefficient=%g" % mu,
+            "-s", "Boundary conditions/Rigid wall 0/normal=%.17g, %.17g" % n,
+            "-s", "Boundary conditions/Rigid wall 0/friction coefficient=%g" % mu,
             "-s", "Simulation/end time=%g" % end_time,
             "-s", "Output/interval=0.01"] + extra)
     samples = []
@@ -80,7 +80,7 @@ def run(exe, theta_deg, mu, end_time, extra):
     slide = sum(0.5 * (v0 + v1) * (s1 - s0)
                 for (s0, v0), (s1, v1) in zip(half, half[1:]))
     last = r.rows[-1]
-    force = math.hypot(float(last["wall_force_x"]), float(last["wall_force_y"]))
+    force = math.hypot(float(last["wall0_force_x"]), float(last["wall0_force_y"]))
     weight = float(last["mass"]) * G
     return slope, slide, force / weight, float(last["wall_seconds"])
 
@@ -96,7 +96,7 @@ def main():
     parser.add_argument("--max-error", type=float, default=0.02)
     parser.add_argument("--max-slide-mm", type=float, default=0.1)
     a = parser.parse_args()
-    print("theta,mu,acceleration,exact,error,slide_mm,wall_force_over_weight,"
+    print("theta,mu,acceleration,exact,error,slide_mm,wall0_force_over_weight,"
           "wall_seconds")
     ok = True
     for case in a.cases.split(","):

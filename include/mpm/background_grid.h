@@ -24,9 +24,9 @@ namespace mpm
   /// What a grid face does to the nodal velocity.
   enum class BoundaryType
   {
-    free,    ///< nothing
-    fixed,   ///< all velocity components zero
-    slip,    ///< normal velocity component zero
+    free,     ///< nothing
+    fixed,    ///< all velocity components zero
+    slip,     ///< normal velocity component zero
     friction, ///< Coulomb contact: no penetration, free separation
     absorbing ///< viscous dashpots that let waves leave (Lysmer-Kuhlemeyer)
   };

@@ -53,8 +53,8 @@ namespace mpm
     /// wall's contact force, a pressure on a loaded face), made before the
     /// scatter so that it adds one vector.
     unsigned int point_load = absent;
-    /// dim: the elastic tangential displacement of a wall contact (stick
-    /// spring).
+    /// dim per rigid wall with friction: the elastic tangential
+    /// displacement of the point's contact with it (stick spring).
     unsigned int wall_slip    = absent;
     unsigned int n_properties = 0;
 
@@ -75,14 +75,14 @@ namespace mpm
   /// Fields that a scene needs beyond the ones every scene stores.
   struct FieldRequests
   {
-    bool initial_position          = false;
-    bool deformation_gradient      = false;
-    bool affine_velocity           = false;
-    bool elastic_left_cauchy_green = false;
-    bool plastic_strain            = false;
-    bool surface_area              = false; ///< with offset and moment
-    bool point_load                = false;
-    bool wall_slip                 = false; ///< only with wall friction
+    bool         initial_position          = false;
+    bool         deformation_gradient      = false;
+    bool         affine_velocity           = false;
+    bool         elastic_left_cauchy_green = false;
+    bool         plastic_strain            = false;
+    bool         surface_area              = false; ///< with offset and moment
+    bool         point_load                = false;
+    unsigned int wall_slips                = 0; ///< walls with friction
   };
 
 

@@ -15,12 +15,15 @@ namespace mpm
   using namespace dealii;
 
   /**
-   * Declare every parameter of a scene with @p n_bodies bodies. The
+   * Declare every parameter of a scene with @p n_bodies bodies and
+   * @p n_walls rigid walls. The
    * declarations do not depend on the dimension: vectors are lists that
    * are checked against it when they are parsed.
    */
   void
-  declare_scene_parameters(ParameterHandler &prm, const unsigned int n_bodies);
+  declare_scene_parameters(ParameterHandler  &prm,
+                           const unsigned int n_bodies,
+                           const unsigned int n_walls = 0);
 
 
   /// Wires the components of the design together and runs the scene.
@@ -47,29 +50,29 @@ namespace mpm
     print_performance(const double wall_seconds,
                       const double step_seconds) const;
 
-    MPI_Comm                         comm;
-    ConditionalOStream               pcout;
-    GridParameters<dim>              grid_parameters;
-    IntegratorParameters<dim>        integrator_parameters;
-    std::vector<BodyParameters<dim>> body_parameters;
-    VelocityRegionParameters<dim>    velocity_region_parameters;
-    RigidWallParameters<dim>         rigid_wall_parameters;
-    VirtualFluidParameters<dim>      virtual_fluid_parameters;
-    ContactParameters<dim>           contact_parameters;
-    OutputParameters                 output_parameters;
-    VerificationParameters           verification_parameters;
+    MPI_Comm                              comm;
+    ConditionalOStream                    pcout;
+    GridParameters<dim>                   grid_parameters;
+    IntegratorParameters<dim>             integrator_parameters;
+    std::vector<BodyParameters<dim>>      body_parameters;
+    VelocityRegionParameters<dim>         velocity_region_parameters;
+    std::vector<RigidWallParameters<dim>> rigid_wall_parameters;
+    VirtualFluidParameters<dim>           virtual_fluid_parameters;
+    ContactParameters<dim>                contact_parameters;
+    OutputParameters                      output_parameters;
+    VerificationParameters                verification_parameters;
 
-    std::unique_ptr<TimerOutput>            timer; ///< made in run(), see there
-    std::unique_ptr<BackgroundGrid<dim>>    grid;
-    std::unique_ptr<MaterialPoints<dim>>    points;
-    std::unique_ptr<VelocityRegion<dim>>    velocity_region;
-    std::unique_ptr<RigidWall<dim>>         rigid_wall;
-    std::unique_ptr<VirtualFluid<dim>>      virtual_fluid;
-    std::unique_ptr<MultiFieldContact<dim>> contact;
-    std::unique_ptr<TimeIntegrator<dim>>    integrator;
-    std::unique_ptr<Verification<dim>>      verification;
-    std::unique_ptr<Output<dim>>            output;
-    double                                  last_output_time = -1;
+    std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
+    std::unique_ptr<BackgroundGrid<dim>> grid;
+    std::unique_ptr<MaterialPoints<dim>> points;
+    std::unique_ptr<VelocityRegion<dim>> velocity_region;
+    std::vector<std::unique_ptr<RigidWall<dim>>> rigid_walls;
+    std::unique_ptr<VirtualFluid<dim>>           virtual_fluid;
+    std::unique_ptr<MultiFieldContact<dim>>      contact;
+    std::unique_ptr<TimeIntegrator<dim>>         integrator;
+    std::unique_ptr<Verification<dim>>           verification;
+    std::unique_ptr<Output<dim>>                 output;
+    double                                       last_output_time = -1;
   };
 } // namespace mpm
 

@@ -87,15 +87,15 @@ namespace mpm
   class TimeIntegrator
   {
   public:
-    TimeIntegrator(const IntegratorParameters<dim> &parameters,
-                   const BackgroundGrid<dim>       &grid,
-                   MaterialPoints<dim>             &points,
-                   VelocityRegion<dim>             &velocity_region,
-                   TimerOutput                     &timer,
-                   MPI_Comm                         comm,
-                   RigidWall<dim>                  *rigid_wall    = nullptr,
-                   VirtualFluid<dim>               *virtual_fluid = nullptr,
-                   MultiFieldContact<dim>          *contact       = nullptr);
+    TimeIntegrator(const IntegratorParameters<dim>     &parameters,
+                   const BackgroundGrid<dim>           &grid,
+                   MaterialPoints<dim>                 &points,
+                   VelocityRegion<dim>                 &velocity_region,
+                   TimerOutput                         &timer,
+                   MPI_Comm                             comm,
+                   const std::vector<RigidWall<dim> *> &rigid_walls   = {},
+                   VirtualFluid<dim>                   *virtual_fluid = nullptr,
+                   MultiFieldContact<dim>              *contact = nullptr);
 
     /// Advance by one step, of at most @p max_dt. Throws RunError (on all
     /// ranks) with a diagnosis if the new state is not sound.
@@ -251,8 +251,8 @@ namespace mpm
     const BackgroundGrid<dim>      &grid;
     MaterialPoints<dim>            &points;
     VelocityRegion<dim>            &velocity_region;
-    /// Null, or a wall acting on the points (only if enabled).
-    RigidWall<dim> *rigid_wall;
+    /// The walls acting on the points.
+    const std::vector<RigidWall<dim> *> rigid_walls;
     /// Null, or a fluid acting on the bodies' surface (only if enabled).
     VirtualFluid<dim> *virtual_fluid;
     /// Null, or the multi-body contact (only if a body has its own field).

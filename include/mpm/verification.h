@@ -29,9 +29,9 @@ namespace mpm
     } exact;
     std::vector<std::string>      exact_displacement; ///< expressions
     std::map<std::string, double> constants;
-    double                        amplitude;            ///< vibrating bar: v0
+    double                        amplitude;    ///< vibrating bar: v0
     double                        top_pressure; ///< self-weight column: p0
-    double                        error_bound;          ///< 0: not checked
+    double                        error_bound;  ///< 0: not checked
     double                        energy_drift_bound;   ///< 0: not checked
     double                        momentum_drift_bound; ///< 0: not checked
   };

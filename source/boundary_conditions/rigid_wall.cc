@@ -7,18 +7,11 @@ namespace mpm
 {
   template <int dim>
   void
-  RigidWallParameters<dim>::declare_parameters(ParameterHandler &prm)
+  RigidWallParameters<dim>::declare_parameters(ParameterHandler  &prm,
+                                               const unsigned int index)
   {
     prm.enter_subsection("Boundary conditions");
-    prm.enter_subsection("Rigid wall");
-    prm.declare_entry("enabled",
-                      "false",
-                      Patterns::Bool(),
-                      "true or false: a rigid plane at any angle to the "
-                      "grid, acting on the material points by a penalty "
-                      "with Coulomb friction; its mean force from the "
-                      "material is written to statistics.csv (wall_force_x, "
-                      "...).");
+    prm.enter_subsection("Rigid wall " + std::to_string(index));
     prm.declare_entry("point",
                       "0",
                       Patterns::Anything(),
@@ -59,45 +52,46 @@ namespace mpm
 
   template <int dim>
   void
-  RigidWallParameters<dim>::parse_parameters(ParameterHandler &prm)
+  RigidWallParameters<dim>::parse_parameters(ParameterHandler  &prm,
+                                             const unsigned int index)
   {
-    const std::string path = "Boundary conditions/Rigid wall";
+    this->index            = index;
+    const std::string name = "Rigid wall " + std::to_string(index);
+    const std::string path = "Boundary conditions/" + name;
     prm.enter_subsection("Boundary conditions");
-    prm.enter_subsection("Rigid wall");
-    enabled = prm.get_bool("enabled");
-    if (enabled)
-      {
-        point = Parse::point<dim>(prm, path, "point");
-        // The normal may be given with 3 components in any dimension.
-        const auto values = Utilities::split_string_list(prm.get("normal"));
-        if (values.size() < dim)
-          throw InputError(path + "/normal",
-                           prm.get("normal"),
-                           "expects at least " + std::to_string(dim) +
-                             " comma-separated values");
-        for (unsigned int d = 0; d < dim; ++d)
-          try
-            {
-              normal[d] = Utilities::string_to_double(values[d]);
-            }
-          catch (...)
-            {
-              throw InputError(path + "/normal",
-                               prm.get("normal"),
-                               "must be numbers");
-            }
-        if (!(normal.norm() > 0) || !std::isfinite(normal.norm()))
-          throw InputError(path + "/normal",
-                           prm.get("normal"),
-                           "must be a non-zero, finite vector");
-        normal /= normal.norm();
-        velocity = Parse::vector<dim>(prm, path, "velocity");
-        friction_coefficient =
-          Parse::bounded_double(prm, path, "friction coefficient", 0, 1e300);
-        penalty =
-          Parse::bounded_double(prm, path, "penalty factor", 0, 4, true, false);
-        damping_ratio = Parse::bounded_double(prm, path, "damping ratio", 0, 1);
-      }
+    prm.enter_subsection(name);
+    {
+      point = Parse::point<dim>(prm, path, "point");
+      // The normal may be given with 3 components in any dimension.
+      const auto values = Utilities::split_string_list(prm.get("normal"));
+      if (values.size() < dim)
+        throw InputError(path + "/normal",
+                         prm.get("normal"),
+                         "expects at least " + std::to_string(dim) +
+                           " comma-separated values");
+      for (unsigned int d = 0; d < dim; ++d)
+        try
+          {
+            normal[d] = Utilities::string_to_double(values[d]);
+          }
+        catch (...)
+          {
+            throw InputError(path + "/normal",
+                             prm.get("normal"),
+                             "must be numbers");
+          }
+      if (!(normal.norm() > 0) || !std::isfinite(normal.norm()))
+        throw InputError(path + "/normal",
+                         prm.get("normal"),
+                         "must be a non-zero, finite vector");
+      normal /= normal.norm();
+      velocity = Parse::vector<dim>(prm, path, "velocity");
+      friction_coefficient =
+        Parse::bounded_double(prm, path, "friction coefficient", 0, 1e300);
+      penalty =
+        Parse::bounded_double(prm, path, "penalty factor", 0, 4, true, false);
+      damping_ratio = Parse::bounded_double(prm, path, "damping ratio", 0, 1);
+    }
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -105,9 +99,11 @@ namespace mpm
 
   template <int dim>
   RigidWall<dim>::RigidWall(const RigidWallParameters<dim> &parameters,
-                            const double                    cell_size)
+                            const double                    cell_size,
+                            const unsigned int              slip_slot)
     : prm(parameters)
     , h(cell_size)
+    , slip_slot(slip_slot)
   {
   }
 
@@ -124,7 +120,9 @@ namespace mpm
     const Point<dim>      position = prm.point + t * prm.velocity;
     const double          mu       = prm.friction_coefficient;
     Tensor<1, dim>        reaction;
-    const bool friction = l.wall_slip != FieldLayout::absent; // mu > 0
+    const bool            friction = slip_slot != numbers::invalid_unsigned_int;
+    const unsigned int    spring   = // this wall's stick spring in the point
+      friction ? l.wall_slip + dim * slip_slot : 0;
     for (auto &p : points)
       {
         double      *q       = p.get_properties().data();
@@ -134,7 +132,7 @@ namespace mpm
           {
             if (friction)
               for (unsigned int d = 0; d < dim; ++d)
-                q[l.wall_slip + d] = 0;
+                q[spring + d] = 0;
             continue;
           }
         // Contact area l^(dim-1) of a point of size l = V^(1/dim).
@@ -157,7 +155,7 @@ namespace mpm
             // damped like the normal direction so that a stuck body does
             // not rock on its springs.
             const Tensor<1, dim> slip = relative - approach * n;
-            Tensor<1, dim> u = Fields::vector<dim>(q + l.wall_slip) + dt * slip;
+            Tensor<1, dim> u = Fields::vector<dim>(q + spring) + dt * slip;
             u -= (u * n) * n;
             Tensor<1, dim> tangential = -k * u - damping * slip;
             if (tangential.norm() > mu * normal_force)
@@ -168,7 +166,7 @@ namespace mpm
               }
             f += tangential;
             for (unsigned int d = 0; d < dim; ++d)
-              q[l.wall_slip + d] = u[d];
+              q[spring + d] = u[d];
           }
         for (unsigned int d = 0; d < dim; ++d)
           load[d] += f[d];
@@ -182,8 +180,8 @@ namespace mpm
   std::vector<std::string>
   RigidWall<dim>::columns() const
   {
-    return prm.enabled ? ReactionMeter<dim>::columns("wall_force")
-                       : std::vector<std::string>();
+    return ReactionMeter<dim>::columns("wall" + std::to_string(prm.index) +
+                                       "_force");
   }
 
 
@@ -191,8 +189,6 @@ namespace mpm
   std::vector<double>
   RigidWall<dim>::mean_force_since_last_call(const double time, MPI_Comm comm)
   {
-    if (!prm.enabled)
-      return {};
     return meter.mean_since_last_call(time, comm);
   }
 

@@ -118,13 +118,13 @@ namespace mpm
   VirtualFluid<dim>::pressure(const Point<dim> &x,
                               Tensor<1, dim>   &gradient) const
   {
-    gradient       = Tensor<1, dim>();
-    double       p = 0;
+    gradient           = Tensor<1, dim>();
+    double       p     = 0;
     const double depth = prm.level - x[dim - 1];
     if (depth > 0 && prm.density > 0)
       {
-        p                   = prm.density * g * depth;
-        gradient[dim - 1]   = -prm.density * g;
+        p                 = prm.density * g * depth;
+        gradient[dim - 1] = -prm.density * g;
       }
     if (extra)
       {

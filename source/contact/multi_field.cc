@@ -63,8 +63,8 @@ namespace mpm
                              std::to_string(n_bodies) + ")");
         own_field[b] = true;
       }
-    friction_coefficient = Parse::bounded_double(
-      prm, "Contact", "friction coefficient", 0, 1e300);
+    friction_coefficient =
+      Parse::bounded_double(prm, "Contact", "friction coefficient", 0, 1e300);
     rigid_share = Parse::bounded_double(prm, "Contact", "rigid share", 0, 1);
     prm.leave_subsection();
   }
@@ -140,13 +140,13 @@ namespace mpm
     constexpr unsigned int data_stride = dim + 1;
     unsigned int           n_present   = 0;
     int                    rigid       = -1; // a rigid field here, if any
-    double                 mass = 0;
+    double                 mass        = 0;
     Tensor<1, dim>         momentum, total_gradient;
     // A rigid field that reaches the node with a sliver of its points (a
     // wide stencil reaching a row into the other body) is not at its
     // surface there: it takes no part.
     const double min_volume = rigid_share * support_volume;
-    auto takes_part = [&](const unsigned int f) {
+    auto         takes_part = [&](const unsigned int f) {
       return node[f * stride] > 0 &&
              (rigid_of_field[f] < 0 ||
               data[f * data_stride + dim] >= min_volume);
@@ -168,8 +168,8 @@ namespace mpm
     // The velocity the fields must not move into: a rigid body's, or the
     // centre of mass's.
     const Tensor<1, dim> reference =
-      rigid >= 0 ? Fields::vector<dim>(node + rigid * stride + slot) :
-                   momentum / mass;
+      rigid >= 0 ? Fields::vector<dim>(node + rigid * stride + slot)
+                 : momentum / mass;
     for (unsigned int f = 0; f < field_count; ++f)
       {
         double *field = node + f * stride;
@@ -179,10 +179,10 @@ namespace mpm
         // Against a rigid body its own normal is used: its shape is exact
         // and does not change, while the deformable body's mass gradient
         // tilts at the edges of the contact and would push it off.
-        const Tensor<1, dim> own = Fields::vector<dim>(data + f * data_stride);
-        Tensor<1, dim>       n =
-          rigid >= 0 ? -Fields::vector<dim>(data + rigid * data_stride) :
-                       own - (total_gradient - own);
+        const Tensor<1, dim> own  = Fields::vector<dim>(data + f * data_stride);
+        Tensor<1, dim>       n    = rigid >= 0
+                                      ? -Fields::vector<dim>(data + rigid * data_stride)
+                                      : own - (total_gradient - own);
         const double         norm = n.norm();
         if (!(norm > 0))
           continue;

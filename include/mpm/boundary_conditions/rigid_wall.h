@@ -19,16 +19,19 @@ namespace mpm
   using namespace dealii;
 
   /// A rigid plane at any angle to the grid (a point on it and its normal),
-  /// moving at a constant velocity, with Coulomb friction.
+  /// moving at a constant velocity, with Coulomb friction. A scene has
+  /// 'Boundary conditions/number of rigid walls' of them, in subsections
+  /// 'Rigid wall 0', 'Rigid wall 1', ...
   template <int dim>
   struct RigidWallParameters
   {
+    /// Declares subsection "Rigid wall <index>" of "Boundary conditions".
     static void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm, const unsigned int index);
     void
-    parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm, const unsigned int index);
 
-    bool           enabled = false;
+    unsigned int   index = 0;
     Point<dim>     point;    ///< on the plane at t = 0
     Tensor<1, dim> normal;   ///< unit, pointing to the material's side
     Tensor<1, dim> velocity; ///< of the plane
@@ -64,14 +67,12 @@ namespace mpm
   class RigidWall
   {
   public:
+    /// @p slip_slot: which of the points' stick springs this wall uses
+    /// (walls with friction each have one; numbers::invalid_unsigned_int
+    /// without friction).
     RigidWall(const RigidWallParameters<dim> &parameters,
-              const double                    cell_size);
-
-    bool
-    enabled() const
-    {
-      return prm.enabled;
-    }
+              const double                    cell_size,
+              const unsigned int              slip_slot);
 
     /**
      * Place the wall at time @p t and add, to each point's 'point load'
@@ -86,7 +87,7 @@ namespace mpm
                   const double                     t,
                   const double                     dt);
 
-    /// Statistics columns: "wall_force_x", ...
+    /// Statistics columns: "wall<N>_force_x", ...
     std::vector<std::string>
     columns() const;
 
@@ -98,6 +99,7 @@ namespace mpm
   private:
     const RigidWallParameters<dim> prm;
     const double                   h;
+    const unsigned int             slip_slot;
     ReactionMeter<dim>             meter;
   };
 } // namespace mpm

@@ -126,12 +126,12 @@ namespace mpm
     mean_forces_since_last_call(const double time, MPI_Comm comm);
 
   private:
-    const double                                      mu;
-    const double                                      rigid_share;
-    unsigned int                                      field_count;
-    std::vector<unsigned int>                         body_field;
-    std::vector<unsigned int>                         rigid_body_list;
-    std::vector<int>                                  rigid_of_field; ///< -1: none
+    const double              mu;
+    const double              rigid_share;
+    unsigned int              field_count;
+    std::vector<unsigned int> body_field;
+    std::vector<unsigned int> rigid_body_list;
+    std::vector<int>          rigid_of_field; ///< -1: none
     std::vector<std::shared_ptr<FunctionParser<dim>>> rigid_velocity;
     std::vector<Tensor<1, dim>>                       current_rigid_velocity;
     std::vector<ReactionMeter<dim>>                   meters;
