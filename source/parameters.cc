@@ -192,6 +192,36 @@ namespace mpm
     }
 
 
+    std::vector<bool>
+    body_flags(const ParameterHandler &prm,
+               const std::string      &path,
+               const std::string      &name,
+               const unsigned int      n_bodies,
+               const bool              empty_means)
+    {
+      const std::string list = prm.get(name);
+      std::vector<bool> flags(n_bodies, list.empty() && empty_means);
+      for (const auto &item : Utilities::split_string_list(list, ','))
+        {
+          int b = -1;
+          try
+            {
+              b = Utilities::string_to_int(item);
+            }
+          catch (...)
+            {
+            }
+          if (b < 0 || b >= static_cast<int>(n_bodies))
+            throw InputError(path + "/" + name,
+                             list,
+                             "must be comma-separated body indices in [0, " +
+                               std::to_string(n_bodies) + ")");
+          flags[b] = true;
+        }
+      return flags;
+    }
+
+
     bool
     is_zero(const std::vector<std::string> &expressions)
     {

@@ -101,6 +101,15 @@ namespace mpm
                     const unsigned int      n,
                     const std::string      &path);
 
+    /// A comma-separated list of body indices in [0, n_bodies) as one flag
+    /// per body; an empty list gives @p empty_means for every body.
+    std::vector<bool>
+    body_flags(const ParameterHandler &prm,
+               const std::string      &path,
+               const std::string      &name,
+               const unsigned int      n_bodies,
+               const bool              empty_means);
+
     /// True if every expression is the number zero.
     bool
     is_zero(const std::vector<std::string> &expressions);

@@ -63,25 +63,7 @@ namespace mpm
         pressure = prm.get("pressure");
         // Parsed here so that a bad expression is an input error at once.
         Parse::vector_function<dim>({pressure}, constants, path + "/pressure");
-        const std::string list = prm.get("bodies");
-        wets_body.assign(n_bodies, list.empty());
-        for (const auto &item : Utilities::split_string_list(list, ','))
-          {
-            int b = -1;
-            try
-              {
-                b = Utilities::string_to_int(item);
-              }
-            catch (...)
-              {
-              }
-            if (b < 0 || b >= static_cast<int>(n_bodies))
-              throw InputError(path + "/bodies",
-                               list,
-                               "must be comma-separated body indices in [0, " +
-                                 std::to_string(n_bodies) + ")");
-            wets_body[b] = true;
-          }
+        wets_body = Parse::body_flags(prm, path, "bodies", n_bodies, true);
       }
     prm.leave_subsection();
     prm.leave_subsection();

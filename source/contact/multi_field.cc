@@ -44,25 +44,7 @@ namespace mpm
                                            const unsigned int n_bodies)
   {
     prm.enter_subsection("Contact");
-    const std::string list = prm.get("bodies");
-    own_field.assign(n_bodies, false);
-    for (const auto &item : Utilities::split_string_list(list, ','))
-      {
-        int b = -1;
-        try
-          {
-            b = Utilities::string_to_int(item);
-          }
-        catch (...)
-          {
-          }
-        if (b < 0 || b >= static_cast<int>(n_bodies))
-          throw InputError("Contact/bodies",
-                           list,
-                           "must be comma-separated body indices in [0, " +
-                             std::to_string(n_bodies) + ")");
-        own_field[b] = true;
-      }
+    own_field = Parse::body_flags(prm, "Contact", "bodies", n_bodies, false);
     friction_coefficient =
       Parse::bounded_double(prm, "Contact", "friction coefficient", 0, 1e300);
     rigid_share = Parse::bounded_double(prm, "Contact", "rigid share", 0, 1);
