@@ -404,8 +404,8 @@ set(two_disks_contact ARGS -s "Contact/bodies=0, 1"
 mpm_test(two_disks_contact PRM two_disks.prm ${two_disks_contact})
 mpm_test(two_disks_contact_mpi2 PRM two_disks.prm NP 2
   REFERENCE two_disks_contact.output RELTOL 1e-7 ${two_disks_contact})
-#     A disk on a rigid incline: frictionless it slides at g sin(theta) (to
-#     round-off), at mu = 0.1 at g (sin - mu cos) (measured 2.5e-4); with
+#     A disk on a rigid incline: frictionless it slides at g sin(theta)
+#     (measured 3e-6), at mu = 0.1 at g (sin - mu cos) (1.4e-4); with
 #     mu = 1 it rolls at (2/3) g sin(theta) within 2 % at 10 cells across
 #     the radius (measured +1.8 %; -7 % at 5 cells; it hops, see
 #     benchmarks/contact/README.md). The rolling case is Release only.
