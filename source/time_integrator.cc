@@ -247,7 +247,7 @@ namespace mpm
         fluid_volume.reinit(grid.make_partitioner(1));
         fluid_force.reinit(grid.make_partitioner(n_fields * dim));
       }
-    if (this->virtual_fluid || this->contact)
+    if (this->virtual_fluid)
       {
         support_volume.reinit(grid.make_partitioner(1));
         // The integral of a node's linear shape function: a share 1/2^dim
@@ -544,17 +544,27 @@ namespace mpm
                 for (unsigned int d = 0; d < dim; ++d)
                   node[momentum + d] += s.weights[v] * p[d];
               }
-            // Contact normals and volumes of each field.
+            // Contact normals of each field, and how many of its points'
+            // domains (a box of side V^(1/dim) around each) hold the node:
+            // where a body's surface lies on the grid.
             if constexpr (multi_field)
               if (with_gradients)
-                for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-                  {
-                    double *data = contact_data.begin() +
-                                   (dim + 1) * slot_of(s.nodes[v], field);
-                    for (unsigned int d = 0; d < dim; ++d)
-                      data[d] += m * s.gradients[v][d];
-                    data[dim] += s.weights[v] * q[l.volume];
-                  }
+                {
+                  const double half_side =
+                    0.5 * (1 + 1e-9) * std::pow(q[l.volume], 1. / dim);
+                  for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                    {
+                      double *data = contact_data.begin() +
+                                     (dim + 1) * slot_of(s.nodes[v], field);
+                      for (unsigned int d = 0; d < dim; ++d)
+                        data[d] += m * s.gradients[v][d];
+                      const Tensor<1, dim> r      = s.node_offset(v);
+                      bool                 inside = true;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        inside = inside && std::abs(r[d]) <= half_side;
+                      data[dim] += inside;
+                    }
+                }
           }
         if (forces)
           {
@@ -821,7 +831,6 @@ namespace mpm
                             n_velocities,
                             slot,
                             data + (dim + 1) * slot_of(i, 0),
-                            support_volume.local_element(i),
                             impulse);
     if (dt > 0)
       contact->add_rigid_impulses(impulse);

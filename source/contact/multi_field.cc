@@ -25,15 +25,6 @@ namespace mpm
                       Patterns::Anything(),
                       "Coulomb coefficient mu >= 0 between fields in "
                       "contact.");
-    prm.declare_entry("rigid share",
-                      "0.2",
-                      Patterns::Anything(),
-                      "A rigid body acts at a node only where its points "
-                      "fill at least this fraction of the node's support, "
-                      "in [0, 1]: a wide stencil (GIMP, B-splines) carries "
-                      "its field a node row into the body it presses, "
-                      "where it would act before the surfaces meet. 0: "
-                      "wherever it has mass (Bardenhagen's original).");
     prm.leave_subsection();
   }
 
@@ -47,7 +38,6 @@ namespace mpm
     own_field = Parse::body_flags(prm, "Contact", "bodies", n_bodies, false);
     friction_coefficient =
       Parse::bounded_double(prm, "Contact", "friction coefficient", 0, 1e300);
-    rigid_share = Parse::bounded_double(prm, "Contact", "rigid share", 0, 1);
     prm.leave_subsection();
   }
 
@@ -57,7 +47,6 @@ namespace mpm
     const ContactParameters<dim>           &parameters,
     const std::vector<BodyParameters<dim>> &bodies)
     : mu(parameters.friction_coefficient)
-    , rigid_share(parameters.rigid_share)
     , field_count(1)
     , body_field(bodies.size(), 0)
     , rigid_of_field(1, -1)
@@ -115,7 +104,6 @@ namespace mpm
     const unsigned int           stride,
     const unsigned int           slot,
     const double                *data,
-    const double                 support_volume,
     std::vector<Tensor<1, dim>> &rigid_impulse) const
   {
     set_rigid_velocities(node, stride, slot);
@@ -124,14 +112,12 @@ namespace mpm
     int                    rigid       = -1; // a rigid field here, if any
     double                 mass        = 0;
     Tensor<1, dim>         momentum, total_gradient;
-    // A rigid field that reaches the node with a sliver of its points (a
-    // wide stencil reaching a row into the other body) is not at its
-    // surface there: it takes no part.
-    const double min_volume = rigid_share * support_volume;
-    auto         takes_part = [&](const unsigned int f) {
+    // A rigid field acts only at the nodes that lie in its body (in the
+    // domain of one of its points): any stencil carries its field beyond
+    // its surface, where it would push before the surfaces meet.
+    auto takes_part = [&](const unsigned int f) {
       return node[f * stride] > 0 &&
-             (rigid_of_field[f] < 0 ||
-              data[f * data_stride + dim] >= min_volume);
+             (rigid_of_field[f] < 0 || data[f * data_stride + dim] > 0);
     };
     for (unsigned int f = 0; f < field_count; ++f)
       {

@@ -30,7 +30,6 @@ namespace mpm
 
     std::vector<bool> own_field; ///< per body (rigid bodies added later)
     double            friction_coefficient = 0;
-    double            rigid_share          = 0.2;
   };
 
 
@@ -48,13 +47,14 @@ namespace mpm
    *    relative velocity is cut by at most mu times the normal part removed
    *    (Coulomb), never reversed; a field moving away is left alone (free
    *    separation);
-   *  - a rigid field acts only at nodes whose support its points fill to
-   *    'rigid share' (0.2): the stencils of GIMP and B-splines carry its
-   *    field a node row into the body it presses (a footing one row deep
-   *    in the soil: +19 % bearing pressure at a share of 0.05), and the
-   *    grid is where a rigid body's surface should be sharp. Deformable
-   *    fields touch wherever they share a node, as in Bardenhagen's
-   *    algorithm: a share there let two colliding disks overlap.
+   *  - a rigid field acts only at the nodes inside its body (in the domain
+   *    of one of its points, a box of side V^(1/dim)): every stencil
+   *    carries its field beyond its surface, a node row into the body it
+   *    presses with B-splines (a footing pushing one row deep in the soil:
+   *    +41 % bearing pressure), and a threshold on its share of a node
+   *    instead lets contact drop out as the body crosses node rows.
+   *    Deformable fields touch wherever they share a node, as in
+   *    Bardenhagen's algorithm.
    *
    * A rigid body is a field whose velocity is prescribed, v_R(t): it is set
    * on the field's nodes, and at a node it shares it replaces v_cm (its mass
@@ -88,10 +88,9 @@ namespace mpm
      * Set the rigid fields' velocities and correct the others at one node.
      * @p node points at the node's first field; field f's mass is at
      * node[f * stride] and its velocity at node[f * stride + slot];
-     * @p data holds each field's sum_p m_p grad phi_I(x_p) (dim) and volume
-     * (1); @p support_volume is the integral of the node's shape function.
-     * The
-     * momentum the rigid fields remove is added to @p rigid_impulse (one
+     * @p data holds each field's sum_p m_p grad phi_I(x_p) (dim) and the
+     * number of its points whose domain holds the node (1). The momentum
+     * the rigid fields remove is added to @p rigid_impulse (one
      * per rigid body, per unit dt: the caller scales it).
      */
     void
@@ -99,7 +98,6 @@ namespace mpm
                  const unsigned int           stride,
                  const unsigned int           slot,
                  const double                *data,
-                 const double                 support_volume,
                  std::vector<Tensor<1, dim>> &rigid_impulse) const;
 
     /// Rigid velocities only (a node with one field).
@@ -127,7 +125,6 @@ namespace mpm
 
   private:
     const double              mu;
-    const double              rigid_share;
     unsigned int              field_count;
     std::vector<unsigned int> body_field;
     std::vector<unsigned int> rigid_body_list;
