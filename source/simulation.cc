@@ -4,6 +4,7 @@
 #include <mpm/parameters.h>
 #include <mpm/simulation.h>
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -284,6 +285,11 @@ namespace mpm
       s << "APIC";
     else
       s << "PIC/FLIP with FLIP fraction " << p.flip_fraction;
+    if (p.local_damping > 0)
+      s << ", local damping " << p.local_damping;
+    if (p.mass_scaling > 1)
+      s << ", mass scaling " << p.mass_scaling << " (time step x "
+        << std::sqrt(p.mass_scaling) << ")";
     return s.str();
   }
 

@@ -461,3 +461,17 @@ add_test(NAME v_notch_walls_friction
 add_test(NAME sticking_block_contact
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/contact/sticking_block.py
     --exe $<TARGET_FILE:dealii-mpm> --check --max-slide-mm 0.1 --max-error 0.01)
+
+# 16. Quasi-static helpers (issue 11): the settling column reaches its
+#     static stress (error <= 0.08 to the end) in 72 steps with Cundall's
+#     local damping (alpha 0.8) and 74 with it and mass scaling 100, against
+#     279 with the shipped global damping.
+add_test(NAME quasi_static_helpers
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/verification/quasi_static.py
+    --exe $<TARGET_FILE:dealii-mpm> --check)
+mpm_test(bad_local_damping PRM block_settling.prm EXIT 1
+  ARGS -s "Simulation/local damping=1"
+  ERROR "parameter 'Simulation/local damping' = '1': allowed range is .0, 1.")
+mpm_test(bad_mass_scaling PRM block_settling.prm EXIT 1
+  ARGS -s "Simulation/mass scaling=0.5"
+  ERROR "parameter 'Simulation/mass scaling' = '0.5': .*1")

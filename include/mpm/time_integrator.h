@@ -50,7 +50,9 @@ namespace mpm
     Transfer        transfer;
     double          flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
     Tensor<1, dim>  gravity;
-    double          damping; ///< mass-proportional, in 1/s
+    double          damping;       ///< mass-proportional, in 1/s
+    double          local_damping; ///< Cundall's alpha, in [0, 1)
+    double          mass_scaling;  ///< inertia factor, >= 1
     double          small_mass_fraction;
     OutOfGridPolicy out_of_grid;
   };
