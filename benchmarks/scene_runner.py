@@ -57,6 +57,14 @@ def run_scene(exe, scene, overrides=(), frame=None, fields="J", check=True,
     return Result(rows, timing, points, values, r.returncode, r.stderr.strip())
 
 
+def least_squares_slope(samples):
+    """Slope of the least-squares line through (t, v) samples."""
+    mean_t = sum(t for t, _ in samples) / len(samples)
+    mean_v = sum(v for _, v in samples) / len(samples)
+    return sum((t - mean_t) * (v - mean_v) for t, v in samples) / \
+        sum((t - mean_t) ** 2 for t, _ in samples)
+
+
 def sweep_arguments(parser):
     """The arguments every driver takes: the executable, and overrides."""
     parser.add_argument("--exe", required=True, help="the dealii-mpm binary")

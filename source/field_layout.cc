@@ -29,8 +29,9 @@ namespace mpm
     if (requests.plastic_strain)
       l.plastic_strain = add("plastic strain", 1);
     if (requests.surface_area)
+      l.surface_area = add("surface area", dim);
+    if (requests.surface_offset)
       {
-        l.surface_area   = add("surface area", dim);
         l.surface_offset = add("surface offset", dim);
         l.load_moment    = add("load moment", dim * dim);
       }

@@ -632,10 +632,9 @@ namespace mpm
                   for (unsigned int d = 0; d < dim; ++d)
                     p[l.initial_position + d] = x[d];
                 if (l.surface_area != FieldLayout::absent)
-                  {
-                    Fields::store(surface.area, p.data() + l.surface_area);
-                    Fields::store(surface.offset, p.data() + l.surface_offset);
-                  }
+                  Fields::store(surface.area, p.data() + l.surface_area);
+                if (l.surface_offset != FieldLayout::absent)
+                  Fields::store(surface.offset, p.data() + l.surface_offset);
                 loaded_area[b] += surface.area.norm();
                 initialise_state(body, stress.get(), x, p.data());
                 Point<dim> start = x;

@@ -112,7 +112,13 @@ namespace mpm
       integrator_parameters.basis == BasisType::cpgimp;
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
     for (const auto &body : body_parameters)
-      fields.surface_area = fields.surface_area || body.has_surface_loads();
+      {
+        fields.surface_area = fields.surface_area || body.has_surface_loads();
+        fields.surface_offset =
+          fields.surface_offset ||
+          (body.has_surface_loads() &&
+           body.loaded_face != numbers::invalid_unsigned_int);
+      }
     // Each wall with friction keeps a stick spring per point.
     std::vector<unsigned int> slip_slot;
     for (const auto &wall : rigid_wall_parameters)

@@ -724,7 +724,9 @@ namespace mpm
         Fields::store(Tensor<1, dim>(), q + l.point_load);
         if (l.surface_area == FieldLayout::absent)
           continue;
-        Fields::store(Tensor<2, dim>(), q + l.load_moment);
+        const bool with_moment = l.load_moment != FieldLayout::absent;
+        if (with_moment)
+          Fields::store(Tensor<2, dim>(), q + l.load_moment);
         const unsigned int b = q[l.body];
         if (pressures[b] == nullptr && tractions[b] == nullptr)
           continue;
@@ -739,9 +741,10 @@ namespace mpm
           for (unsigned int d = 0; d < dim; ++d)
             load[d] += tractions[b]->value(p.get_location(), d) * area.norm();
         Fields::store(load, q + l.point_load);
-        Fields::store(outer_product(load,
-                                    Fields::vector<dim>(q + l.surface_offset)),
-                      q + l.load_moment);
+        if (with_moment)
+          Fields::store(outer_product(
+                          load, Fields::vector<dim>(q + l.surface_offset)),
+                        q + l.load_moment);
       }
     for (auto *wall : rigid_walls)
       wall->act_on_points(points.handler(), l, wave_modulus_of_body, t, dt);

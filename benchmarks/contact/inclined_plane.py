@@ -17,7 +17,7 @@ against the block's weight, and the wall time.
 import argparse, math, os, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+from scene_runner import least_squares_slope, overrides, run_scene, sweep_arguments  # noqa: E402
 
 G, RHO, W, H = 9.81, 1000, 0.2, 0.1
 P0 = (0.1, 0.8)
@@ -68,10 +68,7 @@ def run(exe, theta_deg, mu, end_time, extra):
         v = (float(row["momentum_x"]) * t[0] + float(row["momentum_y"]) * t[1]) / m
         samples.append((float(row["time"]), v))
     late = [(s, v) for s, v in samples if s >= 0.1 - 1e-12]
-    ts = sum(s for s, _ in late) / len(late)
-    vs = sum(v for _, v in late) / len(late)
-    slope = sum((s - ts) * (v - vs) for s, v in late) / \
-        sum((s - ts) ** 2 for s, _ in late)
+    slope = least_squares_slope(late)
     # Slide along the plane in the last quarter of the run: the integral of
     # the mean velocity. At first the block sinks onto the penalty springs
     # and, with little normal force yet, slips a few mm; a stuck block then

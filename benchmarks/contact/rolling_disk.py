@@ -15,7 +15,7 @@ disk normal to the incline (bouncing) over that interval.
 import argparse, math, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+from scene_runner import least_squares_slope, overrides, run_scene, sweep_arguments  # noqa: E402
 
 G, THETA, RADIUS = 9.81, math.pi / 6, 0.1
 FLOOR_MASS = 1000 * 1.2 * 0.04  # the rigid floor box of rolling_disk.prm
@@ -41,11 +41,7 @@ def run(exe, mu, per_radius, extra):
         if t >= 0.05 - 1e-9:
             samples.append((t, float(row["momentum_x"]) / m))
             bounce = max(bounce, abs(float(row["momentum_y"]) / m))
-    mean_t = sum(t for t, _ in samples) / len(samples)
-    mean_v = sum(v for _, v in samples) / len(samples)
-    slope = sum((t - mean_t) * (v - mean_v) for t, v in samples) / \
-        sum((t - mean_t) ** 2 for t, _ in samples)
-    return slope, bounce
+    return least_squares_slope(samples), bounce
 
 
 def main():

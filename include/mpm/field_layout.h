@@ -75,14 +75,16 @@ namespace mpm
   /// Fields that a scene needs beyond the ones every scene stores.
   struct FieldRequests
   {
-    bool         initial_position          = false;
-    bool         deformation_gradient      = false;
-    bool         affine_velocity           = false;
-    bool         elastic_left_cauchy_green = false;
-    bool         plastic_strain            = false;
-    bool         surface_area              = false; ///< with offset and moment
-    bool         point_load                = false;
-    unsigned int wall_slips                = 0; ///< walls with friction
+    bool initial_position          = false;
+    bool deformation_gradient      = false;
+    bool affine_velocity           = false;
+    bool elastic_left_cauchy_green = false;
+    bool plastic_strain            = false;
+    bool surface_area              = false;
+    /// Offset and load moment: only a load on a face of a shape has one.
+    bool         surface_offset = false;
+    bool         point_load     = false;
+    unsigned int wall_slips     = 0; ///< walls with friction
   };
 
 
