@@ -742,9 +742,9 @@ namespace mpm
             load[d] += tractions[b]->value(p.get_location(), d) * area.norm();
         Fields::store(load, q + l.point_load);
         if (with_moment)
-          Fields::store(outer_product(
-                          load, Fields::vector<dim>(q + l.surface_offset)),
-                        q + l.load_moment);
+          Fields::store(
+            outer_product(load, Fields::vector<dim>(q + l.surface_offset)),
+            q + l.load_moment);
       }
     for (auto *wall : rigid_walls)
       wall->act_on_points(points.handler(), l, wave_modulus_of_body, t, dt);
