@@ -28,6 +28,11 @@ namespace mpm
         add("elastic left Cauchy-Green", Fields::n_embedded<dim>);
     if (requests.plastic_strain)
       l.plastic_strain = add("plastic strain", 1);
+    if (requests.damage)
+      {
+        l.damage         = add("damage", 1);
+        l.damage_history = add("damage history", 1);
+      }
     if (requests.surface_area)
       l.surface_area = add("surface area", dim);
     if (requests.surface_offset)

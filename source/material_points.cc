@@ -701,7 +701,7 @@ namespace mpm
         relocate(OutOfGridPolicy::stop);
         for (unsigned int b = 0; b < body_list.size(); ++b)
           if (body_list[b].is_displaced())
-            body_list[b].material->update_stresses(particles, fields, b, 0.);
+            body_list[b].material->update_stresses(particles, fields, b, 0., comm);
       }
   }
 

@@ -30,11 +30,12 @@ namespace mpm
       "fields",
       "velocity, displacement, stress, J, mass, volume, body",
       Patterns::MultipleSelection("velocity|displacement|stress|J|mass|volume|"
-                                  "body|plastic strain|pressure|von Mises "
-                                  "stress"),
+                                  "body|plastic strain|damage|pressure|"
+                                  "von Mises stress"),
       "Particle fields written to VTU, any of: velocity, "
       "displacement, stress, J, mass, volume, body, plastic strain "
-      "(equivalent, 0 for elastic bodies), pressure (-tr(sigma)/3, with the "
+      "(equivalent, 0 for elastic bodies), damage (d, 0 for bodies "
+      "without damage), pressure (-tr(sigma)/3, with the "
       "out-of-plane stress in 2D), von Mises stress (sqrt(3/2 s:s), "
       "likewise). 'displacement' makes every point store its initial "
       "position; the last two are computed at output only.");
@@ -315,6 +316,7 @@ namespace mpm
     const bool           volume       = prm.writes("volume");
     const bool           body         = prm.writes("body");
     const bool           plastic      = prm.writes("plastic strain");
+    const bool           damage       = prm.writes("damage");
     const bool           pressure     = prm.writes("pressure");
     const bool           von_mises    = prm.writes("von Mises stress");
     if (velocity)
@@ -333,6 +335,8 @@ namespace mpm
       out.add_field("body", 1, scalar);
     if (plastic)
       out.add_field("plastic_strain", 1, scalar);
+    if (damage)
+      out.add_field("damage", 1, scalar);
     if (pressure)
       out.add_field("pressure", 1, scalar);
     if (von_mises)
@@ -372,6 +376,8 @@ namespace mpm
         if (plastic)
           put(l.plastic_strain == FieldLayout::absent ? 0.
                                                       : q[l.plastic_strain]);
+        if (damage)
+          put(l.damage == FieldLayout::absent ? 0. : q[l.damage]);
         if (pressure || von_mises)
           {
             const SymmetricTensor<2, 3> sigma =

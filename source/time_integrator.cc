@@ -292,6 +292,12 @@ namespace mpm
           body.rigid_velocity ? 0. : body.material->p_wave_modulus());
         fixed_inverse_density_of_body.push_back(
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
+        if (!body.rigid_velocity && body.material->viscosity() > 0)
+          viscous_time_step =
+            std::min(viscous_time_step,
+                     prm.mass_scaling * body.density *
+                       Utilities::fixed_power<2>(grid.min_cell_size()) /
+                       (2. * dim * body.material->viscosity()));
         body_forces.push_back(body.body_force.get());
         pressures.push_back(body.pressure.get());
         tractions.push_back(body.traction.get());
@@ -496,7 +502,8 @@ namespace mpm
     raise_if_any_failed(failure, comm);
     const double max_speed = std::sqrt(Utilities::MPI::max(max_c2, comm)) +
                              std::sqrt(Utilities::MPI::max(max_v2, comm));
-    return prm.cfl_number * grid.min_cell_size() / max_speed;
+    return prm.cfl_number *
+           std::min(grid.min_cell_size() / max_speed, viscous_time_step);
   }
 
 
@@ -1131,10 +1138,8 @@ namespace mpm
     TimerOutput::Scope scope(timer, "stress");
     for (unsigned int b = 0; b < points.bodies().size(); ++b)
       if (!points.bodies()[b].rigid_velocity) // a rigid body has no stress
-        points.bodies()[b].material->update_stresses(points.handler(),
-                                                     points.layout(),
-                                                     b,
-                                                     dt);
+        points.bodies()[b].material->update_stresses(
+          points.handler(), points.layout(), b, dt, comm);
   }
 
 

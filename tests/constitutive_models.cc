@@ -20,6 +20,7 @@
 #include <random>
 
 #include "checks.h"
+#include "single_point.h"
 
 using namespace dealii;
 using namespace mpm;
@@ -27,75 +28,7 @@ using namespace mpm;
 namespace
 {
   using namespace checks;
-
-
-  /// One material point of model @p name with parameters @p settings.
-  template <int dim>
-  struct Point
-  {
-    Point(const std::string                                      &name,
-          const std::vector<std::pair<std::string, std::string>> &settings,
-          const SymmetricTensor<2, 3> &sigma0 = SymmetricTensor<2, 3>())
-    {
-      ParameterHandler prm;
-      MaterialRegistry::declare_parameters(prm);
-      prm.enter_subsection(name);
-      for (const auto &[key, value] : settings)
-        prm.set(key, value);
-      prm.leave_subsection();
-      material = MaterialRegistry::create<dim>(name, prm, "test", density);
-      FieldRequests requests;
-      material->request_fields(requests);
-      layout = assemble_layout<dim>(requests);
-      q.assign(layout.n_properties, 0.);
-      q[layout.mass]   = density;
-      q[layout.volume] = 1;
-      material->initialise_point(q.data(), layout, sigma0);
-    }
-
-    /// One step with velocity gradient @p L over @p dt.
-    void
-    step(const Tensor<2, dim> &L, const double dt)
-    {
-      Fields::store(L, q.data() + layout.velocity_gradient);
-      Tensor<2, dim> dF = dt * L;
-      for (unsigned int d = 0; d < dim; ++d)
-        dF[d][d] += 1;
-      q[layout.volume] *= determinant(dF);
-      material->update_point_stress(q.data(), layout, dt);
-    }
-
-    /// A step whose increment I + dt L is @p dF exactly (dt = 1).
-    void
-    step_by(const Tensor<2, dim> &dF)
-    {
-      step(dF - unit_symmetric_tensor<dim>(), 1.);
-    }
-
-    double
-    J() const
-    {
-      return q[layout.volume] * density / q[layout.mass];
-    }
-
-    /// Kirchhoff stress, full 3D.
-    SymmetricTensor<2, 3>
-    tau() const
-    {
-      return J() * material->cauchy_stress_3d(q.data(), layout);
-    }
-
-    double
-    plastic_strain() const
-    {
-      return q[layout.plastic_strain];
-    }
-
-    static constexpr double        density = 2000;
-    std::unique_ptr<Material<dim>> material;
-    FieldLayout                    layout;
-    std::vector<double>            q;
-  };
+  using single_point::Point;
 
 
   /// Principal values, largest first. (deal.II's eigenvalues() of a 3x3

@@ -14,6 +14,8 @@
 #include <mpm/contact/multi_field.h>
 #include <mpm/material_points.h>
 
+#include <limits>
+
 namespace mpm
 {
   using namespace dealii;
@@ -286,6 +288,9 @@ namespace mpm
     std::vector<FunctionParser<dim> *> pressures, tractions;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
     std::vector<double> fixed_inverse_density_of_body;
+    /// The momentum-diffusion limit of viscous (fluid) bodies on the time
+    /// step, min rho0 h^2 / (2 dim eta); infinite without them.
+    double viscous_time_step = std::numeric_limits<double>::infinity();
     /// uGIMP/cpGIMP: initial domain half-width of each body's points, in
     /// cells: half of 1 / (points per cell).
     std::vector<double>                initial_half_width_of_body;

@@ -16,7 +16,9 @@ namespace mpm
         LogStrainModels::hencky_elastic(),
         LogStrainModels::von_mises(),
         LogStrainModels::drucker_prager(),
-        LogStrainModels::mohr_coulomb()};
+        LogStrainModels::mohr_coulomb(),
+        LogStrainModels::maxwell_viscoelastic(),
+        Fluids::newtonian_fluid()};
       return entries;
     }
   } // namespace

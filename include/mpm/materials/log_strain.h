@@ -17,11 +17,15 @@
 
 #include <deal.II/base/symmetric_tensor.h>
 
+#include <mpm/materials/damage.h>
+#include <mpm/materials/nonlocal_average.h>
 #include <mpm/materials/pointwise.h>
 
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
+#include <vector>
 
 namespace mpm
 {
@@ -263,27 +267,73 @@ namespace mpm
     };
 
 
+    /// A Flow with a relax() member is viscous (see Model).
+    template <typename Flow, typename = void>
+    struct IsViscous : std::false_type
+    {
+    };
+    template <typename Flow>
+    struct IsViscous<Flow, std::void_t<decltype(&Flow::template relax<3>)>>
+      : std::true_type
+    {
+    };
+
+
+    /// The effective rate sqrt(D':D' / 2) of the deviatoric stretching
+    /// D' of a point's velocity gradient (out-of-plane rates zero), the
+    /// invariant Glen's law is written in.
+    template <int dim>
+    inline double
+    effective_strain_rate(const Tensor<2, dim> &L)
+    {
+      double trace = 0, square = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        {
+          trace += L[i][i];
+          for (unsigned int j = 0; j < dim; ++j)
+            {
+              const double d = 0.5 * (L[i][j] + L[j][i]);
+              square += d * d;
+            }
+        }
+      // D':D' = D:D - tr(D)^2 / 3 with D embedded in 3D.
+      return std::sqrt(std::max(0.5 * (square - trace * trace / 3.), 0.));
+    }
+
+
     /**
-     * A model in the log-strain framework. @p Flow is the plastic part: it
-     * declares its parameters, tells whether it is plastic at all, and
-     * returns principal trial Kirchhoff stresses to its admissible set:
+     * A model in the log-strain framework. @p Flow corrects the elastic
+     * trial state: a plastic flow returns it to its admissible set, a
+     * viscous flow relaxes it over the step, the elastic flow does nothing.
      *
      *   struct Flow {
-     *     static constexpr bool is_plastic;
+     *     static constexpr bool is_plastic;  // stores the plastic strain
      *     static void declare_parameters(ParameterHandler &);
      *     Flow(ParameterHandler &, const std::string &path,
      *          const ElasticConstants &);
-     *     // Return tau (in place) to the admissible set of a point with
-     *     // equivalent plastic strain eqps; false if it was inside.
+     *     // Plastic: return tau (in place) to the admissible set of a
+     *     // point with equivalent plastic strain eqps; false if it was
+     *     // inside.
      *     bool return_map(std::array<double,3> &tau, double eqps) const;
      *     // <= 0 inside the admissible set (initial-stress check).
      *     double yield_function(const std::array<double,3> &tau,
      *                           double eqps) const;
+     *     // Viscous, instead of the two above: relax tau (in place) over
+     *     // a step dt with velocity gradient L.
+     *     template <int dim>
+     *     void relax(std::array<double,3> &tau, double dt,
+     *                const Tensor<2,dim> &L) const;
      *   };
+     *
+     * Every model takes the 'Damage' option (damage.h): the stress it
+     * computes is softened by the damage of the point; its own state stays
+     * undamaged.
      */
     template <int dim, typename Flow>
     class Model : public PointwiseMaterial<dim, Model<dim, Flow>>
     {
+      static constexpr bool is_viscous = IsViscous<Flow>::value;
+
     public:
       Model(ParameterHandler  &prm,
             const std::string &path,
@@ -291,6 +341,7 @@ namespace mpm
         : constants(prm, path)
         , elasticity(constants)
         , flow(prm, path, constants)
+        , damage(prm, path, constants.youngs_modulus())
         , reference_density(density)
       {
       }
@@ -300,6 +351,7 @@ namespace mpm
       {
         ElasticConstants::declare(prm);
         Flow::declare_parameters(prm);
+        DamageLaw::declare_parameters(prm);
       }
 
       void
@@ -308,6 +360,7 @@ namespace mpm
         requests.elastic_left_cauchy_green = true;
         if (Flow::is_plastic)
           requests.plastic_strain = true;
+        damage.request_fields(requests);
       }
 
       double
@@ -347,48 +400,58 @@ namespace mpm
                 std::to_string(f) + " > 0)");
             p[layout.plastic_strain] = 0.;
           }
+        if (damage.enabled())
+          {
+            if (damage.equivalent_strain(s.values) / J >
+                damage.initiation_strain)
+              throw std::domain_error(
+                "exceeds the damage initiation strain (largest principal "
+                "stress / E > initiation strain)");
+            p[layout.damage] = p[layout.damage_history] = 0.;
+          }
         Fields::store_embedded<dim>(stretch_tensor<dim>(elasticity.strain(tau),
                                                         s),
                                     p + layout.elastic_left_cauchy_green);
         Fields::store(Fields::in_plane<dim>(sigma0), p + layout.stress);
       }
 
+      /// Nonlocal damage needs every point's equivalent strain before any
+      /// point's damage: two passes. Otherwise one pass of update_point.
+      void
+      update_stresses(Particles::ParticleHandler<dim> &particles,
+                      const FieldLayout               &layout,
+                      const unsigned int               body,
+                      const double                     dt,
+                      const MPI_Comm                   comm) const override
+      {
+        if (damage.is_nonlocal())
+          update_with_nonlocal_damage(particles, layout, body, dt, comm);
+        else
+          PointwiseMaterial<dim, Model<dim, Flow>>::update_stresses(
+            particles, layout, body, dt, comm);
+      }
+
       inline void
       update_point(double *p, const FieldLayout &layout, const double dt) const
       {
-        double *be_data = p + layout.elastic_left_cauchy_green;
-        const SymmetricTensor<2, 3> trial = push_forward<dim>(
-          Fields::embedded<dim>(be_data),
-          increment<dim>(Fields::tensor<dim>(p + layout.velocity_gradient),
-                         dt));
-        const Spectral        s   = decompose<dim>(trial);
-        std::array<double, 3> tau = elasticity.stress(half_log(s));
-        if constexpr (Flow::is_plastic)
-          {
-            const std::array<double, 3> tau_trial = tau;
-            double                     &eqps      = p[layout.plastic_strain];
-            if (flow.return_map(tau, eqps))
-              {
-                eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
-                Fields::store_embedded<dim>(
-                  stretch_tensor<dim>(elasticity.strain(tau), s), be_data);
-              }
-            else
-              Fields::store_embedded<dim>(trial, be_data);
-          }
-        else
-          Fields::store_embedded<dim>(trial, be_data);
-        const double J = jacobian(p, layout, reference_density);
-        for (double &t : tau)
-          t /= J;
-        Fields::store(Fields::in_plane<dim>(compose<dim>(tau, s)),
+        auto [sigma, s] = undamaged_update(p, layout, dt);
+        if (damage.enabled())
+          apply_damage(p, layout, sigma, damage.equivalent_strain(sigma), dt);
+        Fields::store(Fields::in_plane<dim>(compose<dim>(sigma, s)),
                       p + layout.stress);
       }
 
+      /// The stored energy, 1/2 tau : eps_e per reference volume with the
+      /// damaged tau (the elastic energy when undamaged).
       double
       strain_energy(const double *p, const FieldLayout &layout) const override
       {
-        return elasticity.energy(half_log(stored_b_e(p, layout))) *
+        const Spectral              s   = stored_b_e(p, layout);
+        const std::array<double, 3> eps = half_log(s);
+        std::array<double, 3>       tau = elasticity.stress(eps);
+        if (damage.enabled())
+          damage.degrade(tau, p[layout.damage]);
+        return 0.5 * (tau[0] * eps[0] + tau[1] * eps[1] + tau[2] * eps[2]) *
                p[layout.mass] / reference_density;
       }
 
@@ -401,10 +464,107 @@ namespace mpm
         const double          J   = jacobian(p, layout, reference_density);
         for (double &t : tau)
           t /= J;
+        if (damage.enabled())
+          damage.degrade(tau, p[layout.damage]);
         return compose<dim>(tau, s);
       }
 
     private:
+      /**
+       * The step without damage: push b_e forward, correct it by the flow,
+       * store it; return the principal Cauchy stresses and directions.
+       */
+      inline std::pair<std::array<double, 3>, Spectral>
+      undamaged_update(double            *p,
+                       const FieldLayout &layout,
+                       const double       dt) const
+      {
+        double    *be_data = p + layout.elastic_left_cauchy_green;
+        const auto L       = Fields::tensor<dim>(p + layout.velocity_gradient);
+        const SymmetricTensor<2, 3> trial =
+          push_forward<dim>(Fields::embedded<dim>(be_data),
+                            increment<dim>(L, dt));
+        const Spectral        s         = decompose<dim>(trial);
+        std::array<double, 3> tau       = elasticity.stress(half_log(s));
+        bool                  corrected = false;
+        if constexpr (Flow::is_plastic)
+          {
+            const std::array<double, 3> tau_trial = tau;
+            double                     &eqps      = p[layout.plastic_strain];
+            corrected                             = flow.return_map(tau, eqps);
+            if (corrected)
+              eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
+          }
+        if constexpr (is_viscous)
+          {
+            flow.relax(tau, dt, L);
+            corrected = true;
+          }
+        Fields::store_embedded<dim>(
+          corrected ? stretch_tensor<dim>(elasticity.strain(tau), s) : trial,
+          be_data);
+        const double J = jacobian(p, layout, reference_density);
+        for (double &t : tau)
+          t /= J;
+        return {tau, s};
+      }
+
+      /// Evolve the point's damage with equivalent strain @p chi and soften
+      /// the principal stresses @p sigma by it.
+      inline void
+      apply_damage(double                *p,
+                   const FieldLayout     &layout,
+                   std::array<double, 3> &sigma,
+                   const double           chi,
+                   const double           dt) const
+      {
+        double &kappa    = p[layout.damage_history];
+        kappa            = damage.evolve(kappa, chi, dt);
+        p[layout.damage] = damage.damage(kappa);
+        damage.degrade(sigma, p[layout.damage]);
+      }
+
+      void
+      update_with_nonlocal_damage(Particles::ParticleHandler<dim> &particles,
+                                  const FieldLayout               &layout,
+                                  const unsigned int               body,
+                                  const double                     dt,
+                                  const MPI_Comm                   comm) const
+      {
+        const double            id = body;
+        std::vector<Point<dim>> x;
+        std::vector<double>     volume, chi;
+        for (auto &particle : particles)
+          {
+            double *p = particle.get_properties().data();
+            if (p[layout.body] == id)
+              {
+                const auto sigma = undamaged_update(p, layout, dt).first;
+                x.push_back(particle.get_location());
+                volume.push_back(p[layout.volume]);
+                chi.push_back(damage.equivalent_strain(sigma));
+              }
+          }
+        const std::vector<double> chi_bar =
+          nonlocal.average(x, volume, chi, comm);
+        unsigned int i = 0;
+        for (auto &particle : particles)
+          {
+            double *p = particle.get_properties().data();
+            if (p[layout.body] == id)
+              {
+                const Spectral        s     = stored_b_e(p, layout);
+                std::array<double, 3> sigma = elasticity.stress(half_log(s));
+                const double J = jacobian(p, layout, reference_density);
+                for (double &t : sigma)
+                  t /= J;
+                apply_damage(p, layout, sigma, chi_bar[i++], dt);
+                Fields::store(Fields::in_plane<dim>(compose<dim>(sigma, s)),
+                              p + layout.stress);
+              }
+          }
+      }
+
       /// The spectral decomposition of a point's stored b_e.
       static Spectral
       stored_b_e(const double *p, const FieldLayout &layout)
@@ -413,12 +573,13 @@ namespace mpm
           Fields::embedded<dim>(p + layout.elastic_left_cauchy_green));
       }
 
-      const ElasticConstants    constants;
-      const PrincipalElasticity elasticity;
-      const Flow                flow;
-      const double              reference_density;
+      const ElasticConstants     constants;
+      const PrincipalElasticity  elasticity;
+      const Flow                 flow;
+      const DamageLaw            damage;
+      const NonlocalAverage<dim> nonlocal{damage};
+      const double               reference_density;
     };
-
 
     /// Cohesion, friction and dilation angle (radians) of the frictional
     /// models, declared and read in one place.

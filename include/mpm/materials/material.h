@@ -66,6 +66,19 @@ namespace mpm
     shear_modulus() const = 0;
 
     /**
+     * Shear viscosity of a model whose stress is viscous in the current
+     * strain rate (a fluid): the explicit step must then also resolve
+     * momentum diffusion, dt < rho h^2 / (2 dim eta). 0 for the others (a
+     * Maxwell solid's relaxation is integrated exactly and stays within
+     * its elastic stiffness).
+     */
+    virtual double
+    viscosity() const
+    {
+      return 0.;
+    }
+
+    /**
      * Does the stiffness act on the Kirchhoff stress (hyperelastic and
      * log-strain models: tau = J sigma)? Then the Cauchy stiffness is M / J
      * and the wave speed sqrt(M / rho0) at any J. Otherwise (a Cauchy stress
@@ -93,11 +106,14 @@ namespace mpm
                      const SymmetricTensor<2, 3> &sigma0) const;
 
     /// Update the stress of every locally owned point of body @p body.
+    /// @p comm is for the models that look beyond a point (nonlocal
+    /// damage); the pointwise ones ignore it.
     virtual void
     update_stresses(Particles::ParticleHandler<dim> &particles,
                     const FieldLayout               &layout,
                     const unsigned int               body,
-                    const double                     dt) const = 0;
+                    const double                     dt,
+                    const MPI_Comm                   comm) const = 0;
 
     /// The same for one point (tests, single-point drivers).
     virtual void

@@ -29,7 +29,8 @@ namespace mpm
     update_stresses(Particles::ParticleHandler<dim> &particles,
                     const FieldLayout               &layout,
                     const unsigned int               body,
-                    const double                     dt) const override
+                    const double                     dt,
+                    const MPI_Comm) const override
     {
       const Law   &law = static_cast<const Law &>(*this);
       const double id  = body;
@@ -67,6 +68,12 @@ namespace mpm
     bulk_modulus() const
     {
       return lambda + 2. / 3. * mu;
+    }
+
+    double
+    youngs_modulus() const
+    {
+      return mu * (3. * lambda + 2. * mu) / (lambda + mu);
     }
   };
 
@@ -138,7 +145,14 @@ namespace mpm
     drucker_prager();
     MaterialEntry
     mohr_coulomb();
+    MaterialEntry
+    maxwell_viscoelastic();
   } // namespace LogStrainModels
+  namespace Fluids
+  {
+    MaterialEntry
+    newtonian_fluid();
+  } // namespace Fluids
 } // namespace mpm
 
 #endif

@@ -1,0 +1,129 @@
+// The Maxwell viscoelastic solid of seed 002 (glaciers: ice flows as a
+// viscous fluid over years and is elastic over seconds), in the log-strain
+// framework.
+#include <mpm/materials/log_strain.h>
+
+#include <cmath>
+
+namespace mpm
+{
+  namespace LogStrain
+  {
+    /**
+     * The deviatoric Kirchhoff stress relaxes at the rate mu / eta,
+     *   d(tau') / dt = 2 mu D' - (mu / eta) tau',
+     * the volumetric part stays elastic. Written on b_e (F = F_e F_v, the
+     * viscous stretching D_v = tau' / (2 eta)), the relaxation is a
+     * corrector after the elastic predictor: the principal deviatoric log
+     * strains shrink by exp(-mu dt / eta). That integrates the relaxation
+     * exactly (a held stretch relaxes as exp(-mu t / eta) at any dt) and is
+     * stable for any dt / (eta / mu); the b_e update is objective without
+     * a stress rate, so no spin Omega^log needs to be formed.
+     *
+     * The viscosity is a constant, or Glen's flow law for ice,
+     *   D' = A tau_e^(n-1) tau',   tau_e = sqrt(tau':tau' / 2),
+     * as a viscosity of the effective strain rate e = sqrt(D':D' / 2):
+     *   eta = 1/2 A^(-1/n) e^((1-n)/n),
+     * with e at least 'minimum strain rate' (Glen's viscosity is infinite
+     * at rest).
+     */
+    struct MaxwellFlow
+    {
+      static constexpr bool is_plastic = false;
+
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("viscosity law",
+                          "constant",
+                          Patterns::Selection("constant|Glen"),
+                          "constant: 'viscosity'. Glen: ice's power law, "
+                          "eta = 1/2 A^(-1/n) e^((1-n)/n) of the effective "
+                          "strain rate e.");
+        prm.declare_entry("viscosity",
+                          "1e6",
+                          Patterns::Anything(),
+                          "Shear viscosity eta in Pa s, > 0 (constant law): "
+                          "the relaxation time is eta / shear modulus.");
+        prm.declare_entry("Glen rate factor",
+                          "2.4e-24",
+                          Patterns::Anything(),
+                          "A in Pa^-n s^-1, > 0 (Glen; 2.4e-24 is ice at "
+                          "0 C with n = 3).");
+        prm.declare_entry("Glen exponent",
+                          "3",
+                          Patterns::Anything(),
+                          "n, in [1, 10] (Glen).");
+        prm.declare_entry("minimum strain rate",
+                          "1e-15",
+                          Patterns::Anything(),
+                          "Smallest effective strain rate in 1/s, > 0, in "
+                          "Glen's viscosity: it caps eta where the ice is at "
+                          "rest.");
+      }
+
+      MaxwellFlow(ParameterHandler       &prm,
+                  const std::string      &path,
+                  const ElasticConstants &c)
+        : glen(prm.get("viscosity law") == "Glen")
+        , viscosity(
+            Parse::bounded_double(prm, path, "viscosity", 0, 1e300, true))
+        , rate_factor(Parse::bounded_double(prm,
+                                            path,
+                                            "Glen rate factor",
+                                            0,
+                                            1e300,
+                                            true))
+        , exponent(Parse::bounded_double(prm, path, "Glen exponent", 1, 10))
+        , minimum_rate(Parse::bounded_double(prm,
+                                             path,
+                                             "minimum strain rate",
+                                             0,
+                                             1e300,
+                                             true))
+        , mu(c.mu)
+      {
+      }
+
+      /// The viscosity at effective strain rate @p rate.
+      double
+      eta(const double rate) const
+      {
+        if (!glen)
+          return viscosity;
+        return 0.5 * std::pow(rate_factor, -1. / exponent) *
+               std::pow(std::max(rate, minimum_rate),
+                        (1. - exponent) / exponent);
+      }
+
+      template <int dim>
+      void
+      relax(std::array<double, 3> &tau,
+            const double           dt,
+            const Tensor<2, dim>  &L) const
+      {
+        const double factor =
+          std::exp(-mu * dt / eta(glen ? effective_strain_rate(L) : 0.));
+        const double p = (tau[0] + tau[1] + tau[2]) / 3.;
+        for (double &t : tau)
+          t = p + factor * (t - p);
+      }
+
+      const bool   glen;
+      const double viscosity, rate_factor, exponent, minimum_rate, mu;
+    };
+
+    template <int dim>
+    using Maxwell = Model<dim, MaxwellFlow>;
+  } // namespace LogStrain
+
+
+  namespace LogStrainModels
+  {
+    MaterialEntry
+    maxwell_viscoelastic()
+    {
+      return material_entry<LogStrain::Maxwell>("Maxwell viscoelastic");
+    }
+  } // namespace LogStrainModels
+} // namespace mpm
