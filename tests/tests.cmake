@@ -475,3 +475,23 @@ mpm_test(bad_local_damping PRM block_settling.prm EXIT 1
 mpm_test(bad_mass_scaling PRM block_settling.prm EXIT 1
   ARGS -s "Simulation/mass scaling=0.5"
   ERROR "parameter 'Simulation/mass scaling' = '0.5': .*1")
+
+# 16. Constitutive library II (issue 10). Single points: test
+#     viscous_and_damage_models. In the grid: Glen's law (a slab on an
+#     incline from rest to the steady profile, within 5 % at 8 cells across;
+#     1.6 % measured), the Newtonian fluid (a hydrostatic column keeps
+#     rho g (H - y) within 2 %; the dam break front within 10 % of Martin
+#     and Moyce at every measurement).
+add_test(NAME glen_slab
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/glaciology/glen_slab.py
+    --exe $<TARGET_FILE:dealii-mpm> --cells 8 --check --max-error 0.05)
+add_test(NAME fluid_hydrostatic
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/fluids/fluids.py
+    --exe $<TARGET_FILE:dealii-mpm> --cases hydrostatic --cells 16 --check --max-error 0.02,0.1)
+set(dam_break_cells 8)
+if(NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
+  set(dam_break_cells 8,16)
+endif()
+add_test(NAME dam_break
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/fluids/fluids.py
+    --exe $<TARGET_FILE:dealii-mpm> --cases dam_break --cells ${dam_break_cells} --check --max-error 0.02,0.1)

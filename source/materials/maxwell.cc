@@ -14,11 +14,18 @@ namespace mpm
      *   d(tau') / dt = 2 mu D' - (mu / eta) tau',
      * the volumetric part stays elastic. Written on b_e (F = F_e F_v, the
      * viscous stretching D_v = tau' / (2 eta)), the relaxation is a
-     * corrector after the elastic predictor: the principal deviatoric log
-     * strains shrink by exp(-mu dt / eta). That integrates the relaxation
-     * exactly (a held stretch relaxes as exp(-mu t / eta) at any dt) and is
-     * stable for any dt / (eta / mu); the b_e update is objective without
-     * a stress rate, so no spin Omega^log needs to be formed.
+     * corrector after the elastic predictor, in the trial's principal
+     * directions n_i. The exact solution of the equation over a step with
+     * D' held, with x = mu dt / eta, f = exp(-x), phi = (1 - f) / x, is
+     *   tau'_{n+1} = f tau'_n + phi 2 mu dt D'
+     *              = f tau'_trial + (phi - f) 2 mu dt D',
+     * evaluated with the principal components n_i . D' . n_i. A held
+     * stretch (D' = 0) thus relaxes as exp(-mu t / eta) at any dt, a steady
+     * flow keeps its exact stress at any dt (correcting the trial by f
+     * alone would lower it by x / 2, which Glen's law raises to a rate
+     * error of n x / 2), and the update is stable for any dt. The b_e
+     * update is objective without a stress rate, so no spin Omega^log
+     * needs to be formed.
      *
      * The viscosity is a constant, or Glen's flow law for ice,
      *   D' = A tau_e^(n-1) tau',   tau_e = sqrt(tau':tau' / 2),
@@ -96,17 +103,45 @@ namespace mpm
                         (1. - exponent) / exponent);
       }
 
+      /**
+       * The stretching of the step, (dF dF^T - I) / (2 dt) with
+       * dF = I + dt L, i.e. sym(L) + dt/2 L L^T: zero for a rotation
+       * increment of any size, where sym(L) alone is not.
+       */
+      template <int dim>
+      static SymmetricTensor<2, 3>
+      stretching(const Tensor<2, dim> &L, const double dt)
+      {
+        SymmetricTensor<2, 3> D;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            {
+              double LLt = 0;
+              for (unsigned int k = 0; k < dim; ++k)
+                LLt += L[i][k] * L[j][k];
+              D[i][j] = 0.5 * (L[i][j] + L[j][i]) + 0.5 * dt * LLt;
+            }
+        return D;
+      }
+
       template <int dim>
       void
       relax(std::array<double, 3> &tau,
             const double           dt,
-            const Tensor<2, dim>  &L) const
+            const Tensor<2, dim>  &L,
+            const Spectral        &s) const
       {
-        const double factor =
-          std::exp(-mu * dt / eta(glen ? effective_strain_rate(L) : 0.));
-        const double p = (tau[0] + tau[1] + tau[2]) / 3.;
-        for (double &t : tau)
-          t = p + factor * (t - p);
+        const SymmetricTensor<2, 3> D_dev = deviator(stretching(L, dt));
+        // Glen's effective strain rate sqrt(D':D' / 2).
+        const double x =
+          mu * dt / eta(glen ? std::sqrt(0.5 * (D_dev * D_dev)) : 0.);
+        const double f   = std::exp(-x);
+        const double phi = x > 0 ? -std::expm1(-x) / x : 1.;
+        const double p   = (tau[0] + tau[1] + tau[2]) / 3.;
+        for (unsigned int k = 0; k < 3; ++k)
+          tau[k] = p + f * (tau[k] - p) +
+                   (phi - f) * 2. * mu * dt *
+                     (s.vectors[k] * (D_dev * s.vectors[k]));
       }
 
       const bool   glen;

@@ -279,28 +279,6 @@ namespace mpm
     };
 
 
-    /// The effective rate sqrt(D':D' / 2) of the deviatoric stretching
-    /// D' of a point's velocity gradient (out-of-plane rates zero), the
-    /// invariant Glen's law is written in.
-    template <int dim>
-    inline double
-    effective_strain_rate(const Tensor<2, dim> &L)
-    {
-      double trace = 0, square = 0;
-      for (unsigned int i = 0; i < dim; ++i)
-        {
-          trace += L[i][i];
-          for (unsigned int j = 0; j < dim; ++j)
-            {
-              const double d = 0.5 * (L[i][j] + L[j][i]);
-              square += d * d;
-            }
-        }
-      // D':D' = D:D - tr(D)^2 / 3 with D embedded in 3D.
-      return std::sqrt(std::max(0.5 * (square - trace * trace / 3.), 0.));
-    }
-
-
     /**
      * A model in the log-strain framework. @p Flow corrects the elastic
      * trial state: a plastic flow returns it to its admissible set, a
@@ -319,10 +297,10 @@ namespace mpm
      *     double yield_function(const std::array<double,3> &tau,
      *                           double eqps) const;
      *     // Viscous, instead of the two above: relax tau (in place) over
-     *     // a step dt with velocity gradient L.
+     *     // a step dt with velocity gradient L; tau's directions are s's.
      *     template <int dim>
      *     void relax(std::array<double,3> &tau, double dt,
-     *                const Tensor<2,dim> &L) const;
+     *                const Tensor<2,dim> &L, const Spectral &s) const;
      *   };
      *
      * Every model takes the 'Damage' option (damage.h): the stress it
@@ -497,7 +475,7 @@ namespace mpm
           }
         if constexpr (is_viscous)
           {
-            flow.relax(tau, dt, L);
+            flow.relax(tau, dt, L, s);
             corrected = true;
           }
         Fields::store_embedded<dim>(
