@@ -105,7 +105,8 @@ main()
     W[1][0] = omega;
     Fields::store(W, point.properties() + point.layout.velocity_gradient);
     for (unsigned int i = 0; i < n_steps; ++i)
-      material->update_stresses(point.particles, point.layout, 0, dt, MPI_COMM_SELF);
+      material->update_stresses(
+        point.particles, point.layout, 0, dt, MPI_COMM_SELF);
     const double       angle    = n_steps * 2 * std::atan(0.5 * omega * dt);
     const Tensor<2, 2> R        = rotation(angle);
     const Tensor<2, 2> expected = R * Tensor<2, 2>(sigma0) * transpose(R);
@@ -134,7 +135,8 @@ main()
     U[0][1] = U[1][0] = 0.05;
     auto stress_for   = [&](const Tensor<2, 2> &F) {
       Fields::store(F, point.properties() + point.layout.deformation_gradient);
-      material->update_stresses(point.particles, point.layout, 0, 1e-3, MPI_COMM_SELF);
+      material->update_stresses(
+        point.particles, point.layout, 0, 1e-3, MPI_COMM_SELF);
       return Tensor<2, 2>(
         Fields::symmetric<2>(point.properties() + point.layout.stress));
     };

@@ -159,7 +159,8 @@ namespace
         const double dt = x * eta / G_ice;
         for (unsigned int i = 0; i < 20 / x; ++i)
           p.step(shear_rate<dim>(rate), dt);
-        check(std::to_string(dim) + "D Glen steady simple shear, G dt / eta = " +
+        check(std::to_string(dim) +
+                "D Glen steady simple shear, G dt / eta = " +
                 std::to_string(x) + ": tau_xy / (rate / 2A)^(1/n) - 1",
               p.tau()[0][1] / expected - 1,
               1e-5);

@@ -139,9 +139,9 @@ namespace mpm
         const double phi = x > 0 ? -std::expm1(-x) / x : 1.;
         const double p   = (tau[0] + tau[1] + tau[2]) / 3.;
         for (unsigned int k = 0; k < 3; ++k)
-          tau[k] = p + f * (tau[k] - p) +
-                   (phi - f) * 2. * mu * dt *
-                     (s.vectors[k] * (D_dev * s.vectors[k]));
+          tau[k] =
+            p + f * (tau[k] - p) +
+            (phi - f) * 2. * mu * dt * (s.vectors[k] * (D_dev * s.vectors[k]));
       }
 
       const bool   glen;

@@ -99,13 +99,13 @@ namespace mpm
       {
         const double pressure = -trace(sigma0) / 3.;
         if (deviator(sigma0).norm() > 1e-10 * (std::abs(pressure) + 1.))
-          throw std::domain_error("has shear stress, which a fluid at rest "
-                                  "cannot carry");
+          throw std::domain_error(
+            "carries shear stress, which is not a state at rest");
         const double base = 1. + gamma * pressure / K;
         if (!(base > 0))
           throw std::domain_error(
-            "is a tension beyond the equation of state's range (p > -K / "
-            "gamma)");
+            "is a tension beyond the range (p > -K / gamma) of the equation "
+            "of state");
         const double J = std::pow(base, -1. / gamma);
         p[layout.mass] = reference_density * p[layout.volume] / J;
         Fields::store(Fields::in_plane<dim>(sigma0), p + layout.stress);
