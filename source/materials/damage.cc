@@ -36,7 +36,9 @@ namespace mpm
                       "1e-3",
                       Patterns::Anything(),
                       "epsf > initiation strain: sets the softening; "
-                      "d = 1 - 1/e at kappa = epsf.");
+                      "d = 1 - 1/e at kappa = epsf. The stress softens "
+                      "from E eps0 on only if epsf <= 2 eps0; otherwise it "
+                      "first rises to its peak at kappa = epsf - eps0.");
     prm.declare_entry("delay time",
                       "1e-3",
                       Patterns::Anything(),
@@ -183,6 +185,7 @@ namespace mpm
   NonlocalAverage<dim>::average(const std::vector<Point<dim>> &x,
                                 const std::vector<double>     &volume,
                                 const std::vector<double>     &value,
+                                const std::vector<double>     &floor,
                                 const MPI_Comm                 comm) const
   {
     // All contributors: this rank's points, then the halo's.
@@ -214,30 +217,50 @@ namespace mpm
         k = (k << 21) ^ static_cast<unsigned long long>(b[d] & 0x1fffff);
       return k;
     };
-    std::unordered_map<unsigned long long, std::vector<unsigned int>> bins;
+    struct Bin
+    {
+      std::vector<unsigned int> members;
+      double                    largest = -1e300;
+    };
+    std::unordered_map<unsigned long long, Bin> bins;
     for (unsigned int j = 0; j < y.size(); ++j)
-      bins[key(bin_of(y[j]))].push_back(j);
+      {
+        Bin &bin = bins[key(bin_of(y[j]))];
+        bin.members.push_back(j);
+        bin.largest = std::max(bin.largest, f[j]);
+      }
 
-    std::vector<double> result(x.size());
+    constexpr unsigned int            n_around = Utilities::pow(3, dim);
+    std::array<const Bin *, n_around> around;
+    std::vector<double>               result(x.size());
     for (unsigned int i = 0; i < x.size(); ++i)
       {
-        const auto home      = bin_of(x[i]);
-        double     numerator = 0, denominator = 0;
-        for (unsigned int n = 0; n < Utilities::fixed_power<dim>(3u); ++n)
+        const auto home    = bin_of(x[i]);
+        double     largest = -1e300;
+        for (unsigned int n = 0; n < n_around; ++n)
           {
             std::array<long long, dim> b = home;
             for (unsigned int d = 0, m = n; d < dim; ++d, m /= 3)
               b[d] += static_cast<long long>(m % 3) - 1;
             const auto it = bins.find(key(b));
-            if (it == bins.end())
-              continue;
-            for (const unsigned int j : it->second)
+            around[n]     = it == bins.end() ? nullptr : &it->second;
+            if (around[n] != nullptr)
+              largest = std::max(largest, around[n]->largest);
+          }
+        if (largest <= floor[i])
+          {
+            result[i] = floor[i];
+            continue;
+          }
+        double numerator = 0, denominator = 0;
+        for (const Bin *bin : around)
+          if (bin != nullptr)
+            for (const unsigned int j : bin->members)
               {
                 const double w = weight(x[i].distance_square(y[j])) * v[j];
                 numerator += w * f[j];
                 denominator += w;
               }
-          }
         // The point itself has weight 1: the denominator is positive.
         result[i] = numerator / denominator;
       }

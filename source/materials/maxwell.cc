@@ -88,6 +88,8 @@ namespace mpm
                                              0,
                                              1e300,
                                              true))
+        , glen_factor(0.5 * std::pow(rate_factor, -1. / exponent))
+        , glen_power((1. - exponent) / exponent)
         , mu(c.mu)
       {
       }
@@ -98,9 +100,7 @@ namespace mpm
       {
         if (!glen)
           return viscosity;
-        return 0.5 * std::pow(rate_factor, -1. / exponent) *
-               std::pow(std::max(rate, minimum_rate),
-                        (1. - exponent) / exponent);
+        return glen_factor * std::pow(std::max(rate, minimum_rate), glen_power);
       }
 
       /**
@@ -135,8 +135,11 @@ namespace mpm
         // Glen's effective strain rate sqrt(D':D' / 2).
         const double x =
           mu * dt / eta(glen ? std::sqrt(0.5 * (D_dev * D_dev)) : 0.);
-        const double f   = std::exp(-x);
-        const double phi = x > 0 ? -std::expm1(-x) / x : 1.;
+        // One expm1 gives both, accurately also for x << 1 (real ice:
+        // x ~ 1e-7, where 1 - exp(-x) would keep half the digits).
+        const double em1 = std::expm1(-x);
+        const double f   = 1. + em1;
+        const double phi = x > 0 ? -em1 / x : 1.;
         const double p   = (tau[0] + tau[1] + tau[2]) / 3.;
         for (unsigned int k = 0; k < 3; ++k)
           tau[k] =
@@ -145,7 +148,10 @@ namespace mpm
       }
 
       const bool   glen;
-      const double viscosity, rate_factor, exponent, minimum_rate, mu;
+      const double viscosity, rate_factor, exponent, minimum_rate;
+      /// 1/2 A^(-1/n) and (1 - n) / n, made once.
+      const double glen_factor, glen_power;
+      const double mu;
     };
 
     template <int dim>

@@ -511,7 +511,7 @@ namespace mpm
       {
         const double            id = body;
         std::vector<Point<dim>> x;
-        std::vector<double>     volume, chi;
+        std::vector<double>     volume, chi, kappa;
         for (auto &particle : particles)
           {
             double *p = particle.get_properties().data();
@@ -521,10 +521,11 @@ namespace mpm
                 x.push_back(particle.get_location());
                 volume.push_back(p[layout.volume]);
                 chi.push_back(damage.equivalent_strain(sigma));
+                kappa.push_back(p[layout.damage_history]);
               }
           }
         const std::vector<double> chi_bar =
-          nonlocal.average(x, volume, chi, comm);
+          nonlocal.average(x, volume, chi, kappa, comm);
         unsigned int i = 0;
         for (auto &particle : particles)
           {

@@ -32,12 +32,19 @@ namespace mpm
   public:
     explicit NonlocalAverage(const DamageLaw &law);
 
-    /// v_bar at the points @p x (this rank's points of the body) with
-    /// volumes @p volume and values @p value; collective over @p comm.
+    /**
+     * v_bar at the points @p x (this rank's points of the body) with
+     * volumes @p volume and values @p value; collective over @p comm.
+     * Where it cannot exceed @p floor (no value in reach is above it) the
+     * sum is skipped and floor returned: damage only grows where the
+     * average exceeds the history kappa, and a body in compression
+     * (chi = 0) costs one pass.
+     */
     std::vector<double>
     average(const std::vector<Point<dim>> &x,
             const std::vector<double>     &volume,
             const std::vector<double>     &value,
+            const std::vector<double>     &floor,
             const MPI_Comm                 comm) const;
 
     /// The weight at squared distance @p r2 (0 beyond the support).
