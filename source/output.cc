@@ -8,6 +8,7 @@
 #include <mpm/output.h>
 #include <mpm/parameters.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 
@@ -57,6 +58,14 @@ namespace mpm
                       "2",
                       Patterns::Anything(),
                       "Wall-clock seconds between progress lines, >= 0.");
+    prm.declare_entry(
+      "existing output",
+      "replace",
+      Patterns::Selection("replace|refuse"),
+      "What to do with the output of an earlier run in 'directory': "
+      "replace (its frames, .pvd records, statistics.csv and timing.csv are "
+      "removed first, so no stale frame stays beside the new ones; other "
+      "files are left alone) or refuse (stop with an error).");
     prm.leave_subsection();
   }
 
@@ -72,6 +81,7 @@ namespace mpm
     fields       = Utilities::split_string_list(prm.get("fields"), ',');
     grid_output  = prm.get_bool("grid output");
     body_extents = prm.get_bool("body extents");
+    replace_existing = prm.get("existing output") == "replace";
     progress_interval =
       Parse::bounded_double(prm, "Output", "progress interval", 0, 1e300);
     prm.leave_subsection();
@@ -205,6 +215,68 @@ namespace mpm
     };
 
 
+    /// Where frames are written before they are moved into the output
+    /// directory, complete.
+    const char *const partial = ".partial";
+
+    /// Is @p name a file this program writes into its output directory?
+    bool
+    is_own_output(const std::string &name)
+    {
+      for (const char *base : {"particles", "grid"})
+        if (name.rfind(std::string(base) + "_", 0) == 0 &&
+            (name.size() > 4 &&
+             (name.compare(name.size() - 4, 4, ".vtu") == 0 ||
+              (name.size() > 5 &&
+               name.compare(name.size() - 5, 5, ".pvtu") == 0))))
+          return true;
+      return name == "particles.pvd" || name == "grid.pvd" ||
+             name == "statistics.csv" || name == "timing.csv" ||
+             name == partial;
+    }
+
+    /**
+     * Make @p directory ready for a run: create it, and remove (or refuse)
+     * an earlier run's output in it. Returns a diagnosis, empty if fine.
+     */
+    std::string
+    prepare_directory(const std::string &directory, const bool replace)
+    {
+      std::error_code error;
+      std::filesystem::create_directories(directory, error);
+      if (error || !std::filesystem::is_directory(directory))
+        return InputError("Output/directory",
+                          directory,
+                          "cannot be created or written")
+          .what();
+      std::vector<std::filesystem::path> old;
+      for (const auto &entry :
+           std::filesystem::directory_iterator(directory, error))
+        if (is_own_output(entry.path().filename().string()))
+          old.push_back(entry.path());
+      // An empty partial directory is no earlier output.
+      std::stable_partition(old.begin(), old.end(), [](const auto &path) {
+        return path.filename() != partial;
+      });
+      if (!old.empty() && old.front().filename() != partial && !replace)
+        return InputError("Output/existing output",
+                          "refuse",
+                          "'" + directory +
+                            "' holds the output of an earlier run (" +
+                            old.front().filename().string() +
+                            "); choose another directory or 'replace'")
+          .what();
+      for (const auto &path : old)
+        std::filesystem::remove_all(path, error);
+      std::filesystem::create_directory(directory + "/" + partial, error);
+      if (error)
+        return InputError("Output/directory",
+                          directory,
+                          "cannot be created or written")
+          .what();
+      return "";
+    }
+
     /// Write a PVD record next to its files, atomically: a reader (or a
     /// later crash) never sees a half-written file.
     void
@@ -237,15 +309,25 @@ namespace mpm
     , comm(comm)
     , is_root(Utilities::MPI::this_mpi_process(comm) == 0)
   {
+    // Checked on the root, raised on every rank (a throw on the root
+    // alone left the others waiting in the next collective call).
+    std::string failure;
     if (is_root)
       {
-        std::error_code error;
-        std::filesystem::create_directories(prm.directory, error);
-        statistics_file.open(prm.directory + "/statistics.csv");
-        if (error || !statistics_file)
-          throw InputError("Output/directory",
-                           prm.directory,
-                           "cannot be created or written");
+        failure = prepare_directory(prm.directory, prm.replace_existing);
+        if (failure.empty())
+          {
+            statistics_file.open(prm.directory + "/statistics.csv");
+            if (!statistics_file)
+              failure = InputError("Output/directory",
+                                   prm.directory,
+                                   "cannot be created or written")
+                          .what();
+          }
+      }
+    raise_if_any_failed(failure, comm, true);
+    if (is_root)
+      {
         const char *axis[] = {"x", "y", "z"};
         statistics_file << "step,time,dt,kinetic_energy,strain_energy,"
                            "gravitational_energy,total_energy";
@@ -437,11 +519,33 @@ namespace mpm
     // step of the whole scene for about the same file size.
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
     out.set_flags(flags);
-    // One .vtu per output time whatever the number of ranks (n_groups = 1).
-    const std::string name = out.write_vtu_with_pvtu_record(
-      prm.directory + "/", base, counter, comm, 5, 1);
+    // One .vtu per output time whatever the number of ranks (n_groups = 1),
+    // written into the partial directory and moved out once complete (the
+    // .vtu first, the .pvtu that names it next, the .pvd record last), so
+    // a run killed at any moment leaves only complete frames, each listed
+    // in the .pvd or not at all.
+    const std::string partial_directory = prm.directory + "/" + partial + "/";
+    const std::string name              = out.write_vtu_with_pvtu_record(
+      partial_directory, base, counter, comm, 5, 1);
+    // The .vtu is closed by every rank (collective MPI-IO) when this
+    // returns; the .pvtu is the root's.
     if (is_root)
       {
+        std::vector<std::filesystem::path> written;
+        for (const auto &entry :
+             std::filesystem::directory_iterator(partial_directory))
+          written.push_back(entry.path());
+        // The .vtu files first, the .pvtu that names them last.
+        std::sort(written.begin(),
+                  written.end(),
+                  [](const auto &a, const auto &b) {
+                    return (a.extension() == ".pvtu") <
+                           (b.extension() == ".pvtu");
+                  });
+        for (const auto &path : written)
+          std::filesystem::rename(path,
+                                  prm.directory + "/" +
+                                    path.filename().string());
         records.emplace_back(integrator.time(), name);
         write_pvd(prm.directory + "/" + base + ".pvd", records);
       }

@@ -523,3 +523,14 @@ mpm_test(bad_fluid_bulk_modulus PRM ../benchmarks/fluids/hydrostatic_column.prm 
 mpm_test(bad_fluid_shear_stress PRM ../benchmarks/fluids/hydrostatic_column.prm EXIT 1
   ARGS -s "Bodies/Body 0/initial stress=-1000"
   ERROR "parameter 'Bodies/Body 0/initial stress'.*carries shear stress, which is not a state at rest of 'Newtonian fluid'")
+
+# 17. Reliability (issue 12, part). Output survives a kill (frames written
+#     aside and moved in complete; the .pvd lists only complete frames); a
+#     new run replaces an earlier run's frames, or refuses by parameter; an
+#     output directory that cannot be made stops every rank with one line.
+add_test(NAME output_robustness
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/output_robustness.py
+    --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/two_disks.prm)
+mpm_test(bad_output_directory_mpi2 PRM two_disks.prm NP 2 EXIT 1
+  ARGS -s "Output/directory=/dev/null"
+  ERROR "parameter 'Output/directory' = '/dev/null': cannot be created or written")

@@ -15,7 +15,7 @@ from vtu_points import read_field, read_points  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def draw(directory, png, count):
+def draw(directory, png, count, level):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -35,7 +35,7 @@ def draw(directory, png, count):
         d = [v[0] for v in read_field(frame, "damage")]
         sc = ax.scatter([p[0] for p in x], [p[1] for p in x], c=d, s=1.5,
                         cmap="inferno_r", vmin=0, vmax=1)
-        ax.axhline(50, color="tab:blue", lw=0.8)
+        ax.axhline(level, color="tab:blue", lw=0.8)
         ax.set_aspect("equal")
         ax.set_xlim(200, 640)
         ax.set_ylim(0, 120)
@@ -54,15 +54,17 @@ def main():
     parser.add_argument("--output", help="an existing output directory")
     parser.add_argument("--png", required=True)
     parser.add_argument("--frames", type=int, default=4)
+    parser.add_argument("--level", type=float, default=20,
+                        help="sea level drawn (the scene's fluid level)")
     a = parser.parse_args()
     if a.output:
-        draw(a.output, a.png, a.frames)
+        draw(a.output, a.png, a.frames, a.level)
         return
     with tempfile.TemporaryDirectory() as out:
         subprocess.run([a.exe, os.path.join(HERE, "calving.prm"),
                         "-s", "Output/directory=" + out], check=True,
                        stdout=subprocess.DEVNULL)
-        draw(out, a.png, a.frames)
+        draw(out, a.png, a.frames, a.level)
 
 
 if __name__ == "__main__":

@@ -35,6 +35,8 @@ namespace mpm
     /// Columns with the box around each body's points (runout, length).
     bool   body_extents;
     double progress_interval; ///< wall seconds
+    /// Remove an earlier run's output from the directory (else refuse).
+    bool replace_existing;
   };
 
 

@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Output that survives a kill, and a directory with an earlier run in it
+(issue 12).
+
+1. A run killed with SIGKILL at random moments while it writes a frame
+   every step leaves only complete files: every .vtu and .pvtu in the
+   directory parses as XML, and every frame the .pvd lists exists.
+2. A new run into that directory replaces the old frames ('existing
+   output = replace', the default): no frame of the first run stays.
+3. With 'existing output = refuse' it stops with a one-line error naming
+   the parameter.
+
+  output_robustness.py --exe build/dealii-mpm --scene tests/two_disks.prm
+"""
+import argparse, glob, os, random, subprocess, sys, tempfile, time
+import xml.etree.ElementTree as ET
+
+
+def complete(directory):
+    """Diagnoses of incomplete or missing files (empty if consistent)."""
+    problems = []
+    for name in glob.glob(os.path.join(directory, "*.vtu")) + \
+            glob.glob(os.path.join(directory, "*.pvtu")):
+        try:
+            ET.parse(name)
+        except ET.ParseError as e:
+            problems.append("%s: %s" % (os.path.basename(name), e))
+    pvd = os.path.join(directory, "particles.pvd")
+    if os.path.exists(pvd):
+        for ds in ET.parse(pvd).getroot().iter("DataSet"):
+            if not os.path.exists(os.path.join(directory, ds.get("file"))):
+                problems.append("listed but missing: " + ds.get("file"))
+    return problems
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--exe", required=True)
+    parser.add_argument("--scene", required=True)
+    parser.add_argument("--kills", type=int, default=8)
+    a = parser.parse_args()
+    random.seed(1)
+    ok = True
+    with tempfile.TemporaryDirectory() as out:
+        base = [a.exe, a.scene, "-s", "Output/directory=" + out,
+                "-s", "Output/interval=0", "-s", "Output/progress interval=1e9"]
+        frames_seen = 0
+        for k in range(a.kills):
+            p = subprocess.Popen(base, stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.DEVNULL)
+            time.sleep(random.uniform(0.3, 1.5))
+            p.kill()
+            p.wait()
+            problems = complete(out)
+            frames = len(glob.glob(os.path.join(out, "particles_*.pvtu")))
+            frames_seen = max(frames_seen, frames)
+            print("kill %d: %d complete frames, %s" %
+                  (k, frames, "consistent" if not problems else problems[:3]))
+            ok = ok and not problems
+        ok = ok and frames_seen > 0
+
+        # A short run into the same directory replaces the old frames.
+        subprocess.run(base + ["-s", "Simulation/end time=1e-9"], check=True,
+                       stdout=subprocess.DEVNULL)
+        left = len(glob.glob(os.path.join(out, "particles_*.pvtu")))
+        print("after a new run: %d frames (its own)" % left)
+        ok = ok and 1 <= left <= 2 and not complete(out)
+
+        r = subprocess.run(base + ["-s", "Output/existing output=refuse"],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                           text=True)
+        message = r.stderr.strip()
+        print("refuse: exit %d, %s" % (r.returncode, message))
+        ok = ok and r.returncode == 1 and "\n" not in message and \
+            "parameter 'Output/existing output' = 'refuse'" in message
+    print("passed" if ok else "FAILED")
+    sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
