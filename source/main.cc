@@ -6,7 +6,9 @@
 #include <mpm/simulation.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -134,6 +136,126 @@ namespace
 
 
   /**
+   * What ParameterHandler accepts silently but a scene must not do: be a
+   * directory or empty, set one parameter twice or open one section twice
+   * (the later value wins unseen), or declare more bodies or rigid walls
+   * than it describes (a default one would be added). Checked on the text
+   * of the file; the -s overrides count as written.
+   */
+  class SceneText
+  {
+  public:
+    SceneText(const std::string &scene, const CommandLine &c)
+    {
+      namespace fs = std::filesystem;
+      if (!fs::exists(scene))
+        throw mpm::InputError("scene file '" + scene + "' does not exist");
+      if (fs::is_directory(scene))
+        throw mpm::InputError("scene '" + scene +
+                              "' is a directory, not a scene file");
+      std::ifstream            in(scene);
+      std::string              line, logical;
+      unsigned int             number = 0, first_of_logical = 0;
+      std::vector<std::string> stack;
+      bool                     anything = false;
+      while (std::getline(in, line))
+        {
+          ++number;
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (logical.empty())
+            first_of_logical = number;
+          // deal.II joins a line ending in a backslash with the next.
+          if (!line.empty() && line.back() == '\\')
+            {
+              logical += line.substr(0, line.size() - 1) + " ";
+              continue;
+            }
+          line = Utilities::trim(logical + line);
+          logical.clear();
+          if (line.empty())
+            continue;
+          anything = true;
+          if (line.rfind("subsection ", 0) == 0)
+            {
+              stack.push_back(Utilities::trim(line.substr(11)));
+              note(sections, path(stack, ""), first_of_logical, "section");
+            }
+          else if (line == "end")
+            {
+              if (!stack.empty())
+                stack.pop_back();
+            }
+          else if (line.rfind("set ", 0) == 0)
+            note(entries,
+                 path(stack,
+                      Utilities::trim(line.substr(4, line.find('=') - 4))),
+                 first_of_logical,
+                 "parameter");
+        }
+      if (!anything)
+        throw mpm::InputError("scene file '" + scene +
+                              "' is empty: nothing to simulate");
+      for (const auto &[path, value] : c.overrides)
+        sections.emplace(path.substr(0, path.rfind('/')), 0);
+    }
+
+    /// Is section @p path ("Bodies/Body 1") written?
+    bool
+    has_section(const std::string &path) const
+    {
+      return sections.count(path) > 0;
+    }
+
+  private:
+    static std::string
+    path(const std::vector<std::string> &stack, const std::string &name)
+    {
+      std::string p;
+      for (const auto &s : stack)
+        p += (p.empty() ? "" : "/") + s;
+      return name.empty() ? p : p + "/" + name;
+    }
+
+    static void
+    note(std::map<std::string, unsigned int> &seen,
+         const std::string                   &path,
+         const unsigned int                   line,
+         const std::string                   &kind)
+    {
+      const auto [where, fresh] = seen.emplace(path, line);
+      if (!fresh)
+        throw mpm::InputError(
+          kind + " '" + path + "' is written twice (lines " +
+          std::to_string(where->second) + " and " + std::to_string(line) +
+          (kind == "parameter" ? "): the second would silently win"
+                               : "): their entries would silently merge") +
+          "; write it once");
+    }
+
+    std::map<std::string, unsigned int> sections, entries;
+  };
+
+
+  /// Every one of the @p n numbered sections '@p parent/@p kind N' the
+  /// count @p count_path declares must be written.
+  void
+  check_numbered_sections(const SceneText   &text,
+                          const std::string &parent,
+                          const std::string &kind,
+                          const unsigned int n,
+                          const std::string &count_path)
+  {
+    for (unsigned int i = 0; i < n; ++i)
+      if (!text.has_section(parent + "/" + kind + " " + std::to_string(i)))
+        throw mpm::InputError(count_path,
+                              std::to_string(n),
+                              "but the scene has no section '" + parent + "/" +
+                                kind + " " + std::to_string(i) +
+                                "': describe each of them");
+  }
+
+
+  /**
    * Read the scene in two passes: the first learns the number of bodies
    * and of rigid walls (and tolerates everything it does not know yet), the
    * second declares that many and reads strictly.
@@ -141,7 +263,8 @@ namespace
   void
   read_scene(ParameterHandler &prm, const CommandLine &c)
   {
-    unsigned int n_bodies = 1, n_walls = 0;
+    const SceneText text(c.scene, c);
+    unsigned int    n_bodies = 1, n_walls = 0;
     {
       ParameterHandler first;
       mpm::declare_scene_parameters(first, 1);
@@ -157,6 +280,13 @@ namespace
       n_walls = first.get_integer("number of rigid walls");
       first.leave_subsection();
     }
+    check_numbered_sections(
+      text, "Bodies", "Body", n_bodies, "Bodies/number of bodies");
+    check_numbered_sections(text,
+                            "Boundary conditions",
+                            "Rigid wall",
+                            n_walls,
+                            "Boundary conditions/number of rigid walls");
     mpm::declare_scene_parameters(prm, n_bodies, n_walls);
     prm.parse_input(c.scene);
     for (const auto &[path, value] : c.overrides)

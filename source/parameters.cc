@@ -5,6 +5,7 @@
 #include <mpm/parameters.h>
 
 #include <iostream>
+#include <set>
 #include <sstream>
 
 namespace mpm
@@ -133,8 +134,11 @@ namespace mpm
         if (!std::isfinite(v))
           throw InputError(join(path, name), text, "must be finite");
       if (values.empty())
-        values.assign(n, 0.);
-      else if (values.size() == 1)
+        throw InputError(join(path, name),
+                         text,
+                         "is empty: give " + std::to_string(n) +
+                           " comma-separated numbers (or one for all)");
+      if (values.size() == 1)
         values.assign(n, values[0]);
       else if (values.size() != n)
         throw InputError(join(path, name),
@@ -248,16 +252,31 @@ namespace mpm
       const std::string text = prm.get("constants");
       prm.leave_subsection();
       std::map<std::string, double> c = {{"pi", numbers::PI}};
+      // The names an expression already knows: the coordinates and time.
+      const std::set<std::string> taken = {"pi", "x", "y", "z", "t"};
       for (const auto &entry : Utilities::split_string_list(text, ','))
         {
-          const auto eq = entry.find('=');
+          const auto  eq   = entry.find('=');
+          std::string name = Utilities::trim(entry.substr(0, eq));
           try
             {
-              if (eq == std::string::npos)
+              if (eq == std::string::npos || name.empty())
                 throw 0;
-              c[Utilities::trim(entry.substr(0, eq))] =
-                Utilities::string_to_double(
-                  Utilities::trim(entry.substr(eq + 1)));
+              const double value = Utilities::string_to_double(
+                Utilities::trim(entry.substr(eq + 1)));
+              if (!std::isfinite(value))
+                throw 0;
+              if (taken.count(name) > 0 || c.count(name) > 0)
+                throw InputError("Simulation/constants",
+                                 text,
+                                 "defines '" + name +
+                                   "' again (pi, x, y, z, t and each "
+                                   "constant have one meaning)");
+              c[name] = value;
+            }
+          catch (const InputError &)
+            {
+              throw;
             }
           catch (...)
             {

@@ -534,3 +534,22 @@ add_test(NAME output_robustness
 mpm_test(bad_output_directory_mpi2 PRM two_disks.prm NP 2 EXIT 1
   ARGS -s "Output/directory=/dev/null"
   ERROR "parameter 'Output/directory' = '/dev/null': cannot be created or written")
+#     Bad inputs that were accepted silently or crashed, one line each.
+mpm_test(bad_scene_directory PRM meshes EXIT 1
+  ERROR "input error: scene '.*meshes' is a directory, not a scene file")
+mpm_test(bad_scene_empty PRM empty.prm EXIT 1
+  ERROR "input error: scene file '.*empty.prm' is empty: nothing to simulate")
+mpm_test(bad_duplicate_parameter PRM duplicate_parameter.prm EXIT 1
+  ERROR "parameter 'Simulation/end time' is written twice \\(lines 4 and 5\\): the second would silently win")
+mpm_test(bad_duplicate_section PRM duplicate_section.prm EXIT 1
+  ERROR "section 'Simulation' is written twice \\(lines 2 and 5\\)")
+mpm_test(bad_missing_body PRM two_disks.prm EXIT 1 ARGS -s "Bodies/number of bodies=3"
+  ERROR "parameter 'Bodies/number of bodies' = '3': but the scene has no section 'Bodies/Body 2'")
+mpm_test(bad_constant_pi PRM two_disks.prm EXIT 1 ARGS -s "Simulation/constants=a=1, pi=3"
+  ERROR "parameter 'Simulation/constants' = 'a=1, pi=3': defines 'pi' again")
+mpm_test(bad_empty_vector PRM two_disks.prm EXIT 1 ARGS -s "Simulation/gravity="
+  ERROR "parameter 'Simulation/gravity' = '': is empty: give 2 comma-separated numbers")
+mpm_test(bad_huge_corner PRM two_disks.prm EXIT 1 ARGS -s "Grid/upper corner=1e308"
+  ERROR "parameter 'Grid/upper corner' = '1e308': coordinates must lie in")
+mpm_test(bad_grid_too_large PRM two_disks.prm EXIT 1 ARGS -s "Grid/cells=100000"
+  ERROR "parameter 'Grid/cells' = '100000': 1e.10 cells need about .* GB for the grid")

@@ -48,6 +48,11 @@ namespace mpm
     void
     parse_parameters(ParameterHandler &prm);
 
+    /// Stop with an InputError naming 'Grid/cells' if the grid cannot fit
+    /// in this machine's memory.
+    void
+    check_grid_fits_in_memory(const std::string &cells_text) const;
+
     Point<dim>                        lower_corner;
     Point<dim>                        upper_corner;
     std::array<unsigned int, dim>     n_cells;
