@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The calving demonstration (calving.prm): runs the scene (or reads the
+"""The failing ice cliff demonstration (calving.prm): runs the scene (or reads the
 output directory of a run with --output) and draws the points coloured by
 damage at a few instants into a PNG. No exact answer: the scene must run
 stably to its end.
@@ -54,7 +54,7 @@ def main():
     parser.add_argument("--output", help="an existing output directory")
     parser.add_argument("--png", required=True)
     parser.add_argument("--frames", type=int, default=4)
-    parser.add_argument("--level", type=float, default=20,
+    parser.add_argument("--level", type=float, default=30,
                         help="sea level drawn (the scene's fluid level)")
     a = parser.parse_args()
     if a.output:
