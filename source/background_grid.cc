@@ -209,7 +209,8 @@ namespace mpm
   BackgroundGrid<dim>::BackgroundGrid(
     const GridParameters<dim>                             &parameters,
     MPI_Comm                                               comm,
-    const std::function<unsigned int(const Point<dim> &)> &work_estimate)
+    const std::function<unsigned int(const Point<dim> &)> &work_estimate,
+    const std::string                                     &restart_file)
     : prm(parameters)
     , comm(comm)
     , fe(1)
@@ -239,7 +240,12 @@ namespace mpm
       *tria, repetitions, prm.lower_corner, prm.upper_corner, true);
 
     if constexpr (dim > 1)
-      if (work_estimate && Utilities::MPI::n_mpi_processes(comm) > 1)
+      if (!restart_file.empty())
+        // The saved partition on as many ranks, a balanced one otherwise;
+        // the points stay attached for MaterialPoints::restore().
+        dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria).load(
+          restart_file);
+      else if (work_estimate && Utilities::MPI::n_mpi_processes(comm) > 1)
         {
           // Partition by work, once, before DoFs and particles exist. The
           // +1 keeps every weight positive and lets empty cells count a

@@ -21,6 +21,9 @@ namespace
     "  -s \"Section/Name=value\"  override one parameter (repeatable), e.g.\n"
     "                           -s \"Grid/cells=64\" -s \"Bodies/Body "
     "0/density=2000\"\n"
+    "  --restart DIR             continue the run from the checkpoint in DIR\n"
+    "                           (see 'Checkpoint'); the scene's output\n"
+    "                           directory must hold the run's output\n"
     "  --print-parameters        print every parameter with its default,\n"
     "                           allowed values and documentation\n"
     "  --help                    this text\n";
@@ -29,6 +32,7 @@ namespace
   struct CommandLine
   {
     std::string                                      scene;
+    std::string                                      restart;
     std::vector<std::pair<std::string, std::string>> overrides;
     bool                                             help             = false;
     bool                                             print_parameters = false;
@@ -46,6 +50,13 @@ namespace
           c.help = true;
         else if (a == "--print-parameters")
           c.print_parameters = true;
+        else if (a == "--restart")
+          {
+            if (i + 1 == argc)
+              throw std::runtime_error("option --restart needs a checkpoint "
+                                       "directory");
+            c.restart = argv[++i];
+          }
         else if (a == "-s")
           {
             if (i + 1 == argc)
@@ -297,13 +308,13 @@ namespace
 
   template <int dim>
   void
-  run(ParameterHandler &prm)
+  run(ParameterHandler &prm, const std::string &restart)
   {
     // Let the simulation (and its TimerOutput, which communicates in its
     // destructor) be destroyed normally before a failure is passed on.
     std::exception_ptr failure;
     {
-      mpm::Simulation<dim> simulation(prm, MPI_COMM_WORLD);
+      mpm::Simulation<dim> simulation(prm, MPI_COMM_WORLD, restart);
       try
         {
           simulation.run();
@@ -354,13 +365,13 @@ main(int argc, char **argv)
       switch (dim)
         {
           case 1:
-            run<1>(prm);
+            run<1>(prm, c.restart);
             break;
           case 2:
-            run<2>(prm);
+            run<2>(prm, c.restart);
             break;
           default:
-            run<3>(prm);
+            run<3>(prm, c.restart);
         }
     }
   catch (const mpm::InputError &e)

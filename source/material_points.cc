@@ -563,6 +563,15 @@ namespace mpm
 
   template <int dim>
   void
+  MaterialPoints<dim>::restore(const double minimum_point_mass)
+  {
+    particles.deserialize();
+    minimum_mass = minimum_point_mass;
+  }
+
+
+  template <int dim>
+  void
   MaterialPoints<dim>::generate()
   {
     const FieldLayout      &l = fields;
@@ -701,7 +710,8 @@ namespace mpm
         relocate(OutOfGridPolicy::stop);
         for (unsigned int b = 0; b < body_list.size(); ++b)
           if (body_list[b].is_displaced())
-            body_list[b].material->update_stresses(particles, fields, b, 0., comm);
+            body_list[b].material->update_stresses(
+              particles, fields, b, 0., comm);
       }
   }
 

@@ -277,6 +277,63 @@ namespace mpm
       return "";
     }
 
+    /**
+     * Make @p directory ready to continue a run from a checkpoint taken
+     * at time @p time after @p frames frames: frames the run wrote after
+     * the checkpoint and rows of statistics.csv after @p time go (the
+     * restarted run writes them again). Returns a diagnosis, empty if fine.
+     */
+    std::string
+    resume_directory(const std::string &directory,
+                     const unsigned int frames,
+                     const double       time)
+    {
+      std::error_code error;
+      std::filesystem::remove_all(directory + "/" + partial, error);
+      std::filesystem::create_directories(directory + "/" + partial, error);
+      if (error)
+        return InputError("Output/directory",
+                          directory,
+                          "cannot be created or written")
+          .what();
+      for (const auto &entry :
+           std::filesystem::directory_iterator(directory, error))
+        {
+          const std::string name       = entry.path().filename().string();
+          const auto        underscore = name.find('_');
+          if (is_own_output(name) && underscore != std::string::npos &&
+              name.size() > underscore + 5 &&
+              std::stoul(name.substr(underscore + 1, 5)) >= frames)
+            std::filesystem::remove(entry.path(), error);
+        }
+      const std::string        statistics = directory + "/statistics.csv";
+      std::ifstream            in(statistics);
+      std::vector<std::string> kept;
+      std::string              line;
+      while (std::getline(in, line))
+        {
+          const auto first = line.find(',');
+          const auto second =
+            first == std::string::npos ? first : line.find(',', first + 1);
+          // The header, and the rows up to the checkpoint (the time is the
+          // second column, written with 12 digits).
+          if (kept.empty() || (second != std::string::npos &&
+                               std::strtod(line.c_str() + first + 1, nullptr) <=
+                                 time * (1 + 1e-11)))
+            kept.push_back(line);
+        }
+      if (kept.empty())
+        return InputError("--restart",
+                          statistics,
+                          "is missing or empty: the run's output must stay "
+                          "in 'Output/directory' to continue it")
+          .what();
+      std::ofstream out(statistics);
+      for (const auto &k : kept)
+        out << k << '\n';
+      return "";
+    }
+
     /// Write a PVD record next to its files, atomically: a reader (or a
     /// later crash) never sees a half-written file.
     void
@@ -300,7 +357,8 @@ namespace mpm
                       const TimeIntegrator<dim>      &integrator,
                       const Tensor<1, dim>           &gravity,
                       const std::vector<std::string> &extra_columns,
-                      MPI_Comm                        comm)
+                      MPI_Comm                        comm,
+                      const RunState                 *resume)
     : prm(parameters)
     , grid(grid)
     , points(points)
@@ -312,12 +370,24 @@ namespace mpm
     // Checked on the root, raised on every rank (a throw on the root
     // alone left the others waiting in the next collective call).
     std::string failure;
+    if (resume != nullptr)
+      {
+        counter        = resume->get("output_counter");
+        next_time      = resume->get("output_next_time");
+        particle_files = resume->particle_files;
+        grid_files     = resume->grid_files;
+      }
     if (is_root)
       {
-        failure = prepare_directory(prm.directory, prm.replace_existing);
+        failure =
+          resume != nullptr
+            ? resume_directory(prm.directory, counter, resume->get("time"))
+            : prepare_directory(prm.directory, prm.replace_existing);
         if (failure.empty())
           {
-            statistics_file.open(prm.directory + "/statistics.csv");
+            statistics_file.open(prm.directory + "/statistics.csv",
+                                 resume != nullptr ? std::ios::app
+                                                   : std::ios::out);
             if (!statistics_file)
               failure = InputError("Output/directory",
                                    prm.directory,
@@ -326,7 +396,15 @@ namespace mpm
           }
       }
     raise_if_any_failed(failure, comm, true);
-    if (is_root)
+    if (is_root && resume != nullptr)
+      {
+        // The records as of the checkpoint: frames written after it are
+        // gone.
+        write_pvd(prm.directory + "/particles.pvd", particle_files);
+        if (!grid_files.empty())
+          write_pvd(prm.directory + "/grid.pvd", grid_files);
+      }
+    if (is_root && resume == nullptr)
       {
         const char *axis[] = {"x", "y", "z"};
         statistics_file << "step,time,dt,kinetic_energy,strain_energy,"
@@ -549,6 +627,17 @@ namespace mpm
         records.emplace_back(integrator.time(), name);
         write_pvd(prm.directory + "/" + base + ".pvd", records);
       }
+  }
+
+
+  template <int dim>
+  void
+  Output<dim>::save_state(RunState &state) const
+  {
+    state.values["output_counter"]   = counter;
+    state.values["output_next_time"] = next_time;
+    state.particle_files             = particle_files;
+    state.grid_files                 = grid_files;
   }
 
 

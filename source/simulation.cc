@@ -50,14 +50,18 @@ namespace mpm
     VirtualFluidParameters<2>::declare_parameters(prm);
     ContactParameters<2>::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
+    CheckpointParameters::declare_parameters(prm);
     VerificationParameters::declare_parameters(prm);
   }
 
 
 
   template <int dim>
-  Simulation<dim>::Simulation(ParameterHandler &prm, MPI_Comm comm)
+  Simulation<dim>::Simulation(ParameterHandler  &prm,
+                              MPI_Comm           comm,
+                              const std::string &restart)
     : comm(comm)
+    , restart(restart)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
   {
     grid_parameters.parse_parameters(prm);
@@ -78,7 +82,27 @@ namespace mpm
     virtual_fluid_parameters.parse_parameters(prm, n_bodies);
     contact_parameters.parse_parameters(prm, n_bodies);
     output_parameters.parse_parameters(prm);
+    checkpoint_parameters.parse_parameters(prm, output_parameters.directory);
     verification_parameters.parse_parameters(prm);
+    if (dim == 1 && (checkpoint_parameters.enabled() || !restart.empty()))
+      throw InputError("Checkpoint/interval",
+                       "(or --restart)",
+                       "checkpoints need dimension 2 or 3 (deal.II saves "
+                       "distributed triangulations only, and 1D is serial)");
+  }
+
+
+  template <int dim>
+  std::unique_ptr<RunState>
+  Simulation<dim>::read_restart_state() const
+  {
+    if (restart.empty())
+      return nullptr;
+    const std::string checkpoint = Checkpoint::locate(restart);
+    auto              state =
+      std::make_unique<RunState>(RunState::read(checkpoint + "/state.txt"));
+    state->values["checkpoint_found_in_old"] = checkpoint != restart;
+    return state;
   }
 
 
@@ -89,18 +113,27 @@ namespace mpm
     Timer wall;
     // Made here rather than in the constructor: a TimerOutput that is
     // destroyed while an input error unwinds the stack prints a warning.
-    timer = std::make_unique<TimerOutput>(comm,
+    timer                                  = std::make_unique<TimerOutput>(comm,
                                           pcout,
                                           TimerOutput::never,
                                           TimerOutput::wall_times);
-    // Balance the ranks by the material points each cell will hold.
+    const std::unique_ptr<RunState> resume = read_restart_state();
+    const std::string               checkpoint = resume == nullptr ? ""
+                                                 : resume->get("checkpoint_found_in_old") != 0
+                                                   ? restart + ".old"
+                                                   : restart;
+    // Balance the ranks by the material points each cell will hold (or
+    // take the checkpoint's partition and points).
     grid = std::make_unique<BackgroundGrid<dim>>(
-      grid_parameters, comm, [&](const Point<dim> &cell_origin) {
+      grid_parameters,
+      comm,
+      [&](const Point<dim> &cell_origin) {
         unsigned int n = 0;
         for (const auto &body : body_parameters)
           n += body.count_seeds(cell_origin);
         return n;
-      });
+      },
+      resume == nullptr ? "" : Checkpoint::grid_file(checkpoint));
     FieldRequests fields;
     fields.initial_position =
       output_parameters.writes("displacement") ||
@@ -130,7 +163,23 @@ namespace mpm
                                                    body_parameters,
                                                    fields,
                                                    comm);
-    points->generate();
+    if (resume == nullptr)
+      points->generate();
+    else
+      {
+        // The scene must store the same fields on a grid of as many cells
+        // (deal.II would read the points' data misaligned, or fail).
+        if (resume->get("point_properties") != points->layout().n_properties ||
+            resume->get("grid_cells") !=
+              grid->triangulation().n_global_active_cells())
+          throw InputError("--restart",
+                           restart,
+                           "was written by a scene with another grid or other "
+                           "point fields; restart with the scene that wrote "
+                           "it (end time, output and checkpoint settings may "
+                           "change)");
+        points->restore(resume->get("minimum_point_mass"));
+      }
     velocity_region =
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
     for (unsigned int w = 0; w < rigid_wall_parameters.size(); ++w)
@@ -156,6 +205,11 @@ namespace mpm
                                                        contact.get());
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
+    if (resume != nullptr)
+      {
+        integrator->restore_state(*resume);
+        verification->restore_state(*resume);
+      }
     std::vector<std::string> columns = verification->columns();
     for (const auto &c : velocity_region->columns())
       columns.push_back(c);
@@ -178,9 +232,30 @@ namespace mpm
                                            *integrator,
                                            integrator_parameters.gravity,
                                            columns,
-                                           comm);
+                                           comm,
+                                           resume.get());
     print_scene_summary();
-    write_output(wall.wall_time());
+    if (resume == nullptr)
+      write_output(wall.wall_time());
+    else
+      {
+        // The checkpoint was taken right after an output: the force meters
+        // were reset there.
+        last_output_time     = resume->get("last_output_time");
+        next_checkpoint_time = resume->get("checkpoint_next_time");
+        const double t       = integrator->time();
+        velocity_region->mean_force_since_last_call(t, comm);
+        for (const auto &wall : rigid_walls)
+          wall->mean_force_since_last_call(t, comm);
+        virtual_fluid->mean_force_since_last_call(t, comm);
+        contact->mean_forces_since_last_call(t, comm);
+        pcout << "  restarted from '" << checkpoint << "' at t = " << t
+              << ", step " << integrator->step_number() << std::endl;
+      }
+    if (resume == nullptr)
+      next_checkpoint_time = checkpoint_parameters.interval;
+    first_step           = integrator->step_number();
+    last_checkpoint_wall = wall.wall_time();
 
     const double end_time   = integrator_parameters.end_time;
     double       last_print = 0;
@@ -203,7 +278,10 @@ namespace mpm
             if (output_parameters.interval == 0 ||
                 now >= output->next_output_time() * (1 - 1e-12) ||
                 now >= end_time * (1 - 1e-12))
-              write_output(wall.wall_time());
+              {
+                write_output(wall.wall_time());
+                checkpoint_if_due(wall.wall_time());
+              }
             if (wall.wall_time() - last_print >=
                 output_parameters.progress_interval)
               {
@@ -222,6 +300,41 @@ namespace mpm
       }
     print_performance(wall.wall_time() - start, stepping.wall_time());
     verification->check(pcout);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::checkpoint_if_due(const double wall_seconds)
+  {
+    const auto  &c   = checkpoint_parameters;
+    const double now = integrator->time();
+    // The wall clocks of the ranks differ: the root's decides.
+    const bool by_wall =
+      Utilities::MPI::broadcast(comm,
+                                c.wall_interval > 0 &&
+                                  wall_seconds - last_checkpoint_wall >=
+                                    c.wall_interval,
+                                0);
+    const bool by_time =
+      c.interval > 0 && now >= next_checkpoint_time * (1 - 1e-12);
+    if (!by_wall && !by_time)
+      return;
+    TimerOutput::Scope scope(*timer, "checkpoint");
+    if (c.interval > 0)
+      next_checkpoint_time =
+        (std::floor(now / c.interval * (1 + 1e-12)) + 1) * c.interval;
+    RunState state;
+    integrator->save_state(state);
+    verification->save_state(state);
+    output->save_state(state);
+    state.values["last_output_time"]     = last_output_time;
+    state.values["minimum_point_mass"]   = points->min_particle_mass();
+    state.values["checkpoint_next_time"] = next_checkpoint_time;
+    state.values["point_properties"]     = points->layout().n_properties;
+    state.values["grid_cells"] = grid->triangulation().n_global_active_cells();
+    Checkpoint::save(c.directory, *grid, *points, state, comm);
+    last_checkpoint_wall = wall_seconds;
   }
 
 
@@ -325,7 +438,7 @@ namespace mpm
     timer->print_wall_time_statistics(comm);
     const double particle_steps =
       double(points->handler().n_global_particles()) *
-      integrator->step_number();
+      (integrator->step_number() - first_step);
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     // Cost per particle-step per rank: rank-seconds / particle-steps.
     auto ns = [&](const double seconds) {
@@ -337,7 +450,7 @@ namespace mpm
       Utilities::MPI::sum(double(memory.VmHWM) * 1024., comm);
     const double bytes_per_particle =
       peak_bytes / std::max<double>(points->handler().n_global_particles(), 1);
-    pcout << "Finished " << integrator->step_number()
+    pcout << "Finished " << integrator->step_number() - first_step
           << " steps to t = " << integrator->time() << " in " << wall_seconds
           << " s (" << step_seconds << " s in steps): " << ns(step_seconds)
           << " ns per particle-step per rank, peak memory "

@@ -1143,6 +1143,28 @@ namespace mpm
   }
 
 
+  template <int dim>
+  void
+  TimeIntegrator<dim>::save_state(RunState &state) const
+  {
+    state.values["time"]           = t;
+    state.values["last_dt"]        = last_dt;
+    state.values["steps"]          = n_steps;
+    state.values["removed_points"] = n_removed;
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::restore_state(const RunState &state)
+  {
+    t         = state.get("time");
+    last_dt   = state.get("last_dt");
+    n_steps   = state.get("steps");
+    n_removed = state.get("removed_points");
+  }
+
+
   template struct IntegratorParameters<1>;
   template struct IntegratorParameters<2>;
   template struct IntegratorParameters<3>;

@@ -335,6 +335,37 @@ namespace mpm
   }
 
 
+  template <int dim>
+  void
+  Verification<dim>::save_state(RunState &state) const
+  {
+    auto &v                                  = state.values;
+    v["verification_max_error"]              = max_error_max_norm;
+    v["verification_max_velocity_error"]     = max_velocity_error;
+    v["verification_have_initial_state"]     = have_initial_state;
+    v["verification_initial_energy"]         = initial_energy;
+    v["verification_initial_momentum_scale"] = initial_momentum_scale;
+    for (unsigned int d = 0; d < dim; ++d)
+      v["verification_initial_momentum_" + std::to_string(d)] =
+        initial_momentum[d];
+  }
+
+
+  template <int dim>
+  void
+  Verification<dim>::restore_state(const RunState &state)
+  {
+    max_error_max_norm     = state.get("verification_max_error");
+    max_velocity_error     = state.get("verification_max_velocity_error");
+    have_initial_state     = state.get("verification_have_initial_state");
+    initial_energy         = state.get("verification_initial_energy");
+    initial_momentum_scale = state.get("verification_initial_momentum_scale");
+    for (unsigned int d = 0; d < dim; ++d)
+      initial_momentum[d] =
+        state.get("verification_initial_momentum_" + std::to_string(d));
+  }
+
+
   template class Verification<1>;
   template class Verification<2>;
   template class Verification<3>;

@@ -553,3 +553,22 @@ mpm_test(bad_huge_corner PRM two_disks.prm EXIT 1 ARGS -s "Grid/upper corner=1e3
   ERROR "parameter 'Grid/upper corner' = '1e308': coordinates must lie in")
 mpm_test(bad_grid_too_large PRM two_disks.prm EXIT 1 ARGS -s "Grid/cells=100000"
   ERROR "parameter 'Grid/cells' = '100000': 1e.10 cells need about .* GB for the grid")
+#     Checkpoint and restart: restarted at T/2 the run equals the
+#     uninterrupted one bit for bit (1 and 2 ranks), to round-off on another
+#     rank count (2 -> 1), and after random SIGKILLs (inside checkpoints
+#     too), each followed by a restart, still bit for bit.
+set(restart_scene --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/two_disks.prm
+  --end-time 3 -s "Grid/cells=80" -s "Verification/energy drift bound=0")
+add_test(NAME checkpoint_restart
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
+    ${restart_scene} --kills 4)
+add_test(NAME checkpoint_restart_mpi2
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
+    ${restart_scene} --np 2 --kills 3)
+add_test(NAME checkpoint_restart_2_to_1
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
+    ${restart_scene} --np 2 --restart-np 1 --tolerance 1e-12)
+mpm_test(bad_restart_missing PRM two_disks.prm EXIT 1 ARGS --restart nowhere
+  ERROR "parameter '--restart' = 'nowhere': holds no complete checkpoint")
+mpm_test(bad_checkpoint_1d PRM vibrating_bar.prm EXIT 1 ARGS -s "Checkpoint/interval=0.1"
+  ERROR "parameter 'Checkpoint/interval'.*checkpoints need dimension 2 or 3")

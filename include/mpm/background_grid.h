@@ -2,6 +2,7 @@
 #define mpm_background_grid_h
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/partitioner.h>
 #include <deal.II/base/point.h>
 
@@ -120,10 +121,13 @@ namespace mpm
     /// lower corner) will carry; the distributed grid is then partitioned
     /// so that every rank gets the same work rather than the same number
     /// of cells (material points usually fill only part of the grid).
-    BackgroundGrid(const GridParameters<dim> &parameters,
-                   MPI_Comm                   comm,
-                   const std::function<unsigned int(const Point<dim> &)>
-                     &work_estimate = {});
+    /// @p restart_file: load the partition (and the points attached to
+    /// it) from a checkpoint instead of partitioning by @p work_estimate.
+    BackgroundGrid(
+      const GridParameters<dim>                             &parameters,
+      MPI_Comm                                               comm,
+      const std::function<unsigned int(const Point<dim> &)> &work_estimate = {},
+      const std::string                                     &restart_file = "");
 
     const Triangulation<dim> &
     triangulation() const

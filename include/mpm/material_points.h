@@ -195,6 +195,12 @@ namespace mpm
     void
     generate();
 
+    /// Instead of generate(): take the points back from the checkpoint the
+    /// grid was loaded from, with the smallest point mass of the
+    /// generation.
+    void
+    restore(const double minimum_point_mass);
+
     /**
      * Put points back in their cells after their positions changed: update
      * reference coordinates of those that stayed (almost all), move those

@@ -82,7 +82,13 @@ namespace mpm
            const TimeIntegrator<dim>      &integrator,
            const Tensor<1, dim>           &gravity,
            const std::vector<std::string> &extra_columns,
-           MPI_Comm                        comm);
+           MPI_Comm                        comm,
+           const RunState                 *resume = nullptr);
+
+    /// The frame counter, next output time and the .pvd records, for a
+    /// checkpoint (a restart passes them back to the constructor).
+    void
+    save_state(RunState &state) const;
 
     /// Write statistics and, if due, the fields; @p extra are values of
     /// the extra columns (verification errors).

@@ -31,7 +31,10 @@ namespace mpm
   class Simulation
   {
   public:
-    Simulation(ParameterHandler &prm, MPI_Comm comm);
+    /// @p restart: a checkpoint directory to continue from (empty: start).
+    Simulation(ParameterHandler  &prm,
+               MPI_Comm           comm,
+               const std::string &restart = "");
 
     void
     run();
@@ -41,6 +44,12 @@ namespace mpm
     print_scene_summary() const;
     void
     write_output(const double wall_seconds);
+    /// After an output: write a checkpoint if one is due.
+    void
+    checkpoint_if_due(const double wall_seconds);
+    /// The checkpoint to continue from and its state (null: a new run).
+    std::unique_ptr<RunState>
+    read_restart_state() const;
     void
     print_progress(const double wall_seconds) const;
     /// "scheme USL, basis linear, transfer ..." for the start-up summary.
@@ -60,6 +69,8 @@ namespace mpm
     VirtualFluidParameters<dim>           virtual_fluid_parameters;
     ContactParameters<dim>                contact_parameters;
     OutputParameters                      output_parameters;
+    CheckpointParameters                  checkpoint_parameters;
+    std::string                           restart;
     VerificationParameters                verification_parameters;
 
     std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
@@ -73,6 +84,10 @@ namespace mpm
     std::unique_ptr<Verification<dim>>           verification;
     std::unique_ptr<Output<dim>>                 output;
     double                                       last_output_time = -1;
+    double next_checkpoint_time = 0, last_checkpoint_wall = 0;
+    /// The step this run started from (not 0 after a restart): the cost per
+    /// particle-step counts this run's steps.
+    unsigned int first_step = 0;
   };
 } // namespace mpm
 

@@ -11,6 +11,7 @@
 #include <mpm/boundary_conditions/rigid_wall.h>
 #include <mpm/boundary_conditions/velocity_region.h>
 #include <mpm/boundary_conditions/virtual_fluid.h>
+#include <mpm/checkpoint.h>
 #include <mpm/contact/multi_field.h>
 #include <mpm/material_points.h>
 
@@ -144,6 +145,13 @@ namespace mpm
     /// h / max(c_p + |v_p|). Also checks that every point is finite.
     double
     stable_time_step();
+
+    /// Put the clock and counters into @p state, or take them back from
+    /// it (checkpoint and restart).
+    void
+    save_state(RunState &state) const;
+    void
+    restore_state(const RunState &state);
 
   private:
     // Components of the interleaved nodal vectors.

@@ -6,6 +6,7 @@
 
 #include <array>
 
+#include <mpm/checkpoint.h>
 #include <mpm/material_points.h>
 #include <mpm/output.h>
 
@@ -67,6 +68,12 @@ namespace mpm
     /// Throw RunError if a bound was exceeded; print what was measured.
     void
     check(ConditionalOStream &out) const;
+
+    /// The maxima so far and the initial state, for a checkpoint.
+    void
+    save_state(RunState &state) const;
+    void
+    restore_state(const RunState &state);
 
   private:
     double
