@@ -91,6 +91,15 @@ namespace mpm
                       "sqrt(s) slower and the CFL time step sqrt(s) larger. "
                       "1: off. Dynamics are wrong by design; use it only "
                       "where the answer is static or slow.");
+    prm.declare_entry(
+      "J bounds",
+      "1e-3, 1e3",
+      Patterns::Anything(),
+      "Run-health guard: the run stops, naming the point, when a point's "
+      "volume ratio J = V / V0 leaves [J_min, J_max] (a point crushed to "
+      "nothing or torn apart is a run gone wrong, not physics); two "
+      "numbers, 0 < J_min < 1 < J_max. Granular flows that spread far may "
+      "need a larger J_max.");
     prm.declare_entry("small mass fraction",
                       "0.25",
                       Patterns::Anything(),
@@ -136,6 +145,29 @@ namespace mpm
     mass_scaling = Parse::bounded_double(prm, s, "mass scaling", 1, 1e12);
     small_mass_fraction =
       Parse::bounded_double(prm, s, "small mass fraction", 0, 1, false, true);
+    {
+      const auto bounds = Utilities::split_string_list(prm.get("J bounds"));
+      bool       fine   = bounds.size() == 2;
+      try
+        {
+          if (fine)
+            {
+              J_min = Utilities::string_to_double(bounds[0]);
+              J_max = Utilities::string_to_double(bounds[1]);
+              fine =
+                J_min > 0 && J_min < 1 && J_max > 1 && std::isfinite(J_max);
+            }
+        }
+      catch (...)
+        {
+          fine = false;
+        }
+      if (!fine)
+        throw InputError("Simulation/J bounds",
+                         prm.get("J bounds"),
+                         "must be two numbers J_min, J_max with 0 < J_min < "
+                         "1 < J_max");
+    }
     out_of_grid = prm.get("out of grid") == "stop" ? OutOfGridPolicy::stop
                                                    : OutOfGridPolicy::remove;
     prm.leave_subsection();
@@ -292,6 +324,8 @@ namespace mpm
           body.rigid_velocity ? 0. : body.material->p_wave_modulus());
         fixed_inverse_density_of_body.push_back(
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
+        // A rigid body's points keep their volume: no guard.
+        density_of_body.push_back(body.rigid_velocity ? 0. : body.density);
         if (!body.rigid_velocity && body.material->viscosity() > 0)
           viscous_time_step =
             std::min(viscous_time_step,
@@ -482,6 +516,22 @@ namespace mpm
                              : q[l.volume] / q[l.mass]) /
                           prm.mass_scaling;
         const double v2 = v.norm_square();
+        const double J  = q[l.volume] / q[l.mass] * density_of_body[b];
+        // J = 0 marks a rigid body's points (no guard there).
+        if ((J < prm.J_min && J > 0) || J > prm.J_max)
+          if (failure.empty())
+            {
+              std::ostringstream msg;
+              msg << "step " << n_steps << ", t = " << t << ": material point "
+                  << p.get_id() << " of body " << b << " at ("
+                  << p.get_location() << ") has J = V / V0 = " << J
+                  << ", outside 'Simulation/J bounds' [" << prm.J_min << ", "
+                  << prm.J_max << "]: it was "
+                  << (J < 1 ? "crushed" : "torn apart")
+                  << "; the run is unstable (try a smaller CFL number, MUSL, "
+                     "a smooth basis) or the bounds are too tight";
+              failure = msg.str();
+            }
         // One test catches NaN/inf in velocity, stress and volume.
         if (!std::isfinite(c2 + v2 + (s * s) + q[l.volume]) && failure.empty())
           {

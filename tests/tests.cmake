@@ -572,3 +572,10 @@ mpm_test(bad_restart_missing PRM two_disks.prm EXIT 1 ARGS --restart nowhere
   ERROR "parameter '--restart' = 'nowhere': holds no complete checkpoint")
 mpm_test(bad_checkpoint_1d PRM vibrating_bar.prm EXIT 1 ARGS -s "Checkpoint/interval=0.1"
   ERROR "parameter 'Checkpoint/interval'.*checkpoints need dimension 2 or 3")
+#     Run-health guard on J: a point crushed or torn beyond 'Simulation/J
+#     bounds' stops the run, naming it (here with bounds tight enough for
+#     the colliding disks to reach them).
+mpm_test(J_guard PRM two_disks.prm EXIT 2 ARGS -s "Simulation/J bounds=0.99, 1.01"
+  ERROR "run stopped: step [0-9]+, t = [0-9.e-]+: material point [0-9]+ of body [01] at \\([-0-9. e]+\\) has J = V / V0 = [0-9.e-]+, outside 'Simulation/J bounds' .0.99, 1.01.: it was crushed")
+mpm_test(bad_J_bounds PRM two_disks.prm EXIT 1 ARGS -s "Simulation/J bounds=2, 3"
+  ERROR "parameter 'Simulation/J bounds' = '2, 3': must be two numbers J_min, J_max with 0 < J_min < 1 < J_max")

@@ -57,6 +57,7 @@ namespace mpm
     double          local_damping; ///< Cundall's alpha, in [0, 1)
     double          mass_scaling;  ///< inertia factor, >= 1
     double          small_mass_fraction;
+    double          J_min, J_max; ///< run-health guard on V / V0
     OutOfGridPolicy out_of_grid;
   };
 
@@ -296,6 +297,8 @@ namespace mpm
     std::vector<FunctionParser<dim> *> pressures, tractions;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
     std::vector<double> fixed_inverse_density_of_body;
+    /// rho0 of each body: J = V rho0 / m for the guard on J.
+    std::vector<double> density_of_body;
     /// The momentum-diffusion limit of viscous (fluid) bodies on the time
     /// step, min rho0 h^2 / (2 dim eta); infinite without them.
     double viscous_time_step = std::numeric_limits<double>::infinity();
