@@ -5,6 +5,7 @@
 #include <mpm/parameters.h>
 #include <mpm/simulation.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -333,6 +334,14 @@ namespace
 int
 main(int argc, char **argv)
 {
+  // Open MPI's shared-memory file pointer (component 'sharedfp sm', used
+  // by the MPI-IO writes of the .vtu files) keeps a named semaphore per
+  // file name in /dev/shm. A run killed while writing leaves it locked,
+  // and every later run writing a file of that name on this machine hangs
+  // (seen: a kill of particles_00141.0.vtu stopped a later, unrelated run
+  // there). The file-lock component's locks end with the process. A
+  // setting of the user's own is kept.
+  setenv("OMPI_MCA_sharedfp", "^sm", 0);
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool root  = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   auto       error = [root](const std::string &kind, const std::string &what) {

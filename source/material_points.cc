@@ -571,9 +571,32 @@ namespace mpm
 
 
   template <int dim>
-  void
-  MaterialPoints<dim>::generate()
+  std::string
+  MaterialPoints<dim>::overlap_at(const unsigned int b,
+                                  const Point<dim>  &x) const
   {
+    for (unsigned int other = 0; other < body_list.size(); ++other)
+      if (other != b && body_list[other].shape &&
+          body_list[other].shape->contains(x))
+        {
+          std::ostringstream where;
+          where << "overlaps 'Bodies/Body " << other << "' (the point at (" << x
+                << ") lies in both); two bodies cannot fill the same "
+                << "space unless 'Bodies/may overlap' is true";
+          return InputError(body_list[b].name + "/shape",
+                            body_list[b].shape_name,
+                            where.str())
+            .what();
+        }
+    return "";
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::generate(const bool may_overlap)
+  {
+    std::string             overlap;
     const FieldLayout      &l = fields;
     std::vector<Point<dim>> positions;
     std::vector<Point<dim>> displaced_positions;              // at t = 0
@@ -619,6 +642,8 @@ namespace mpm
                   const Point<dim>        &xi,
                   const double             volume,
                   const SurfaceShare<dim> &surface) {
+                if (!may_overlap && overlap.empty())
+                  overlap = overlap_at(b, x);
                 const double mass = body.density * volume;
                 minimum_mass      = std::min(minimum_mass, mass);
                 std::vector<double> p(l.n_properties, 0.);
@@ -658,6 +683,7 @@ namespace mpm
               });
       }
     minimum_mass = Utilities::MPI::min(minimum_mass, comm);
+    raise_if_any_failed(overlap, comm, true);
     raise_if_any_failed(state_failure, comm, true);
 
     for (unsigned int b = 0; b < body_list.size(); ++b)

@@ -30,6 +30,12 @@ namespace mpm
                       Patterns::Integer(1, 1000),
                       "Number of bodies; body N is described in subsection "
                       "'Body N', N = 0, 1, ...");
+    prm.declare_entry("may overlap",
+                      "false",
+                      Patterns::Bool(),
+                      "true or false: may two bodies fill the same space? "
+                      "Usually a mistake in the scene (the overlap holds "
+                      "twice the mass), so it is an error unless true.");
     prm.leave_subsection();
     for (unsigned int b = 0; b < n_bodies; ++b)
       BodyParameters<2>::declare_parameters(prm, b);
@@ -68,6 +74,7 @@ namespace mpm
     integrator_parameters.parse_parameters(prm);
     prm.enter_subsection("Bodies");
     const unsigned int n_bodies = prm.get_integer("number of bodies");
+    bodies_may_overlap          = prm.get_bool("may overlap");
     prm.leave_subsection();
     body_parameters.resize(n_bodies);
     for (unsigned int b = 0; b < n_bodies; ++b)
@@ -164,7 +171,7 @@ namespace mpm
                                                    fields,
                                                    comm);
     if (resume == nullptr)
-      points->generate();
+      points->generate(bodies_may_overlap);
     else
       {
         // The scene must store the same fields on a grid of as many cells

@@ -579,3 +579,5 @@ mpm_test(J_guard PRM two_disks.prm EXIT 2 ARGS -s "Simulation/J bounds=0.99, 1.0
   ERROR "run stopped: step [0-9]+, t = [0-9.e-]+: material point [0-9]+ of body [01] at \\([-0-9. e]+\\) has J = V / V0 = [0-9.e-]+, outside 'Simulation/J bounds' .0.99, 1.01.: it was crushed")
 mpm_test(bad_J_bounds PRM two_disks.prm EXIT 1 ARGS -s "Simulation/J bounds=2, 3"
   ERROR "parameter 'Simulation/J bounds' = '2, 3': must be two numbers J_min, J_max with 0 < J_min < 1 < J_max")
+mpm_test(bad_overlapping_bodies PRM two_disks.prm EXIT 1 ARGS -s "Bodies/Body 1/center=0.3, 0.3"
+  ERROR "parameter 'Bodies/Body 0/shape' = 'ball': overlaps 'Bodies/Body 1' .the point at .* lies in both.")

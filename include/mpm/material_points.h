@@ -193,7 +193,7 @@ namespace mpm
 
     /// Fill every body with points; fails if a body gets none.
     void
-    generate();
+    generate(const bool may_overlap = false);
 
     /// Instead of generate(): take the points back from the checkpoint the
     /// grid was loaded from, with the smallest point mass of the
@@ -255,7 +255,12 @@ namespace mpm
       const typename Particles::ParticleHandler<dim>::particle_iterator &p)
       const;
 
-    const BackgroundGrid<dim>             &grid;
+    const BackgroundGrid<dim> &grid;
+    /// A diagnosis if the point @p x of body @p b lies inside another
+    /// body's shape (mesh bodies are not checked), else empty.
+    std::string
+    overlap_at(const unsigned int b, const Point<dim> &x) const;
+
     const std::vector<BodyParameters<dim>> body_list;
     MPI_Comm                               comm;
     const FieldLayout                      fields;

@@ -71,6 +71,7 @@ namespace mpm
     OutputParameters                      output_parameters;
     CheckpointParameters                  checkpoint_parameters;
     std::string                           restart;
+    bool                                  bodies_may_overlap;
     VerificationParameters                verification_parameters;
 
     std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
