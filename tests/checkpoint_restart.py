@@ -102,9 +102,9 @@ def main():
             if equal else "DIFFERENT"))
         ok = ok and equal
 
-        # A checkpoint restarted by a scene that stores other point fields
+        # A checkpoint restarted by a scene with another grid
         # is refused in one line.
-        r = subprocess.run(command(1, split, "-s", "Simulation/transfer=APIC",
+        r = subprocess.run(command(1, split, "-s", "Grid/cells=3",
                                    "--restart",
                                    os.path.join(split, "checkpoint")),
                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
