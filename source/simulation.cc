@@ -129,6 +129,24 @@ namespace mpm
                                                  : resume->get("checkpoint_found_in_old") != 0
                                                    ? restart + ".old"
                                                    : restart;
+    // A checkpoint is only read by the scene that wrote it (checked before
+    // deal.II loads a grid that does not match, which it cannot report).
+    auto throw_scene_differs = [&]() {
+      throw InputError("--restart",
+                       restart,
+                       "was written by a scene with another grid or other "
+                       "point fields; restart with the scene that wrote it "
+                       "(end time, output and checkpoint settings may "
+                       "change)");
+    };
+    if (resume != nullptr)
+      {
+        double n_cells = 1;
+        for (const auto n : grid_parameters.n_cells)
+          n_cells *= n;
+        if (resume->get("grid_cells") != n_cells)
+          throw_scene_differs();
+      }
     // Balance the ranks by the material points each cell will hold (or
     // take the checkpoint's partition and points).
     grid = std::make_unique<BackgroundGrid<dim>>(
@@ -174,17 +192,10 @@ namespace mpm
       points->generate(bodies_may_overlap);
     else
       {
-        // The scene must store the same fields on a grid of as many cells
-        // (deal.II would read the points' data misaligned, or fail).
-        if (resume->get("point_properties") != points->layout().n_properties ||
-            resume->get("grid_cells") !=
-              grid->triangulation().n_global_active_cells())
-          throw InputError("--restart",
-                           restart,
-                           "was written by a scene with another grid or other "
-                           "point fields; restart with the scene that wrote "
-                           "it (end time, output and checkpoint settings may "
-                           "change)");
+        // The scene must store the same fields (deal.II would read the
+        // points' data misaligned, or fail).
+        if (resume->get("point_properties") != points->layout().n_properties)
+          throw_scene_differs();
         points->restore(resume->get("minimum_point_mass"));
       }
     velocity_region =
