@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""A fuzzer over the parameters of the shipped scenes (issue 12).
+
+Every 'set' line of every scene (tests/*.prm, benchmarks/*/*.prm) is given
+bad values, one at a time, in a short run; each run must end in one of:
+  - a clean run (exit 0),
+  - an input error (exit 1) of exactly one line that names a parameter,
+    the scene or the option,
+  - a stopped run (exit 2) with its diagnosis,
+and never in a crash (a signal, another exit code) or a hang (--timeout).
+
+  fuzz_parameters.py --exe build/dealii-mpm             every case
+  fuzz_parameters.py --exe ... --sample 60 --seed 1     a random sample
+"""
+import argparse, glob, os, random, re, subprocess, sys, tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.dirname(HERE)
+BAD_VALUES = ["", "-1", "0", "1e308", "-1e308", "nan", "inf", "abc",
+              "1, 2, 3, 4", "1e-308"]
+
+
+def parameters(scene):
+    """(path, value) of every 'set' line of @p scene."""
+    stack, found = [], []
+    for line in open(scene):
+        line = line.split("#")[0].strip()
+        if line.startswith("subsection "):
+            stack.append(line[len("subsection "):].strip())
+        elif line == "end" and stack:
+            stack.pop()
+        elif line.startswith("set ") and "=" in line:
+            name = line[4:line.index("=")].strip()
+            found.append("/".join(stack + [name]))
+    return found
+
+
+def verdict(returncode, stderr):
+    """None if acceptable, else what went wrong."""
+    message = stderr.strip()
+    if returncode == 0 or returncode == 2:
+        return None
+    if returncode == 1:
+        lines = [l for l in message.splitlines() if l.strip()]
+        if len(lines) != 1:
+            return "input error of %d lines" % len(lines)
+        if not re.search(r"parameter '|section '|scene|option", lines[0]):
+            return "input error naming no parameter: " + lines[0]
+        return None
+    return "exit code %d (crash): %s" % (returncode, message[-300:])
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--exe", required=True)
+    parser.add_argument("--sample", type=int, default=0,
+                        help="run this many random cases (0: all)")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--timeout", type=float, default=60)
+    a = parser.parse_args()
+    # The scenes that are malformed on purpose (their own tests) are left
+    # out.
+    malformed = ("malformed.prm", "empty.prm", "duplicate_parameter.prm",
+                 "duplicate_section.prm")
+    scenes = sorted(s for s in
+                    glob.glob(os.path.join(HERE, "*.prm")) +
+                    glob.glob(os.path.join(TOP, "benchmarks", "*", "*.prm"))
+                    if os.path.basename(s) not in malformed)
+    cases = [(scene, path, value) for scene in scenes
+             for path in parameters(scene) for value in BAD_VALUES]
+    if a.sample:
+        random.seed(a.seed)
+        cases = random.sample(cases, min(a.sample, len(cases)))
+    failures = 0
+    counts = {0: 0, 1: 0, 2: 0}
+    with tempfile.TemporaryDirectory() as out:
+        for scene, path, value in cases:
+            # Short runs: a few steps of each scene, then the bad value.
+            command = [a.exe, scene, "-s", "Output/directory=" + out,
+                       "-s", "Output/progress interval=1e9",
+                       "-s", "Simulation/end time=1e-4",
+                       "-s", "%s=%s" % (path, value)]
+            try:
+                r = subprocess.run(command, stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.PIPE, text=True,
+                                   timeout=a.timeout)
+                problem = verdict(r.returncode, r.stderr)
+                counts[r.returncode] = counts.get(r.returncode, 0) + 1
+            except subprocess.TimeoutExpired:
+                problem = "no answer within %g s (a hang?)" % a.timeout
+            if problem:
+                failures += 1
+                print("FAIL %s: %s = '%s': %s" % (
+                    os.path.relpath(scene, TOP), path, value, problem),
+                    flush=True)
+    print("%d cases: %d clean runs, %d one-line input errors, %d stopped "
+          "runs, %d failures" % (len(cases), counts.get(0, 0),
+                                 counts.get(1, 0), counts.get(2, 0), failures))
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
