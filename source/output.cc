@@ -9,6 +9,7 @@
 #include <mpm/parameters.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 
@@ -219,20 +220,53 @@ namespace mpm
     /// directory, complete.
     const char *const partial = ".partial";
 
-    /// Is @p name a file this program writes into its output directory?
-    bool
-    is_own_output(const std::string &name)
+    /// The diagnosis for an output directory that cannot be used.
+    std::string
+    unwritable(const std::string &directory)
     {
-      for (const char *base : {"particles", "grid"})
-        if (name.rfind(std::string(base) + "_", 0) == 0 &&
-            (name.size() > 4 &&
-             (name.compare(name.size() - 4, 4, ".vtu") == 0 ||
-              (name.size() > 5 &&
-               name.compare(name.size() - 5, 5, ".pvtu") == 0))))
-          return true;
-      return name == "particles.pvd" || name == "grid.pvd" ||
-             name == "statistics.csv" || name == "timing.csv" ||
-             name == partial;
+      return InputError("Output/directory",
+                        directory,
+                        "cannot be created or written")
+        .what();
+    }
+
+    /// The number of a frame file (particles_00012.0.vtu: 12); -1 for the
+    /// program's other files and for files not its own.
+    int
+    frame_number(const std::filesystem::path &file)
+    {
+      const std::string name = file.filename().string();
+      const auto        ext  = file.extension();
+      for (const std::string base : {"particles_", "grid_"})
+        if (name.rfind(base, 0) == 0 && (ext == ".vtu" || ext == ".pvtu"))
+          return std::atoi(name.c_str() + base.size());
+      return -1;
+    }
+
+    /// Is @p file one this program writes into its output directory (the
+    /// partial directory aside)?
+    bool
+    is_own_output(const std::filesystem::path &file)
+    {
+      const std::string name = file.filename().string();
+      return frame_number(file) >= 0 || name == "particles.pvd" ||
+             name == "grid.pvd" || name == "statistics.csv" ||
+             name == "timing.csv";
+    }
+
+    /// Create @p directory and an empty partial directory in it.
+    std::string
+    make_directories(const std::string &directory)
+    {
+      std::error_code error;
+      std::filesystem::create_directories(directory, error);
+      if (!error)
+        std::filesystem::remove_all(directory + "/" + partial, error);
+      if (!error)
+        std::filesystem::create_directory(directory + "/" + partial, error);
+      return error || !std::filesystem::is_directory(directory + "/" + partial)
+               ? unwritable(directory)
+               : "";
     }
 
     /**
@@ -242,23 +276,16 @@ namespace mpm
     std::string
     prepare_directory(const std::string &directory, const bool replace)
     {
-      std::error_code error;
-      std::filesystem::create_directories(directory, error);
-      if (error || !std::filesystem::is_directory(directory))
-        return InputError("Output/directory",
-                          directory,
-                          "cannot be created or written")
-          .what();
+      if (const std::string failure = make_directories(directory);
+          !failure.empty())
+        return failure;
+      std::error_code                    error;
       std::vector<std::filesystem::path> old;
       for (const auto &entry :
            std::filesystem::directory_iterator(directory, error))
-        if (is_own_output(entry.path().filename().string()))
+        if (is_own_output(entry.path()))
           old.push_back(entry.path());
-      // An empty partial directory is no earlier output.
-      std::stable_partition(old.begin(), old.end(), [](const auto &path) {
-        return path.filename() != partial;
-      });
-      if (!old.empty() && old.front().filename() != partial && !replace)
+      if (!old.empty() && !replace)
         return InputError("Output/existing output",
                           "refuse",
                           "'" + directory +
@@ -267,13 +294,7 @@ namespace mpm
                             "); choose another directory or 'replace'")
           .what();
       for (const auto &path : old)
-        std::filesystem::remove_all(path, error);
-      std::filesystem::create_directory(directory + "/" + partial, error);
-      if (error)
-        return InputError("Output/directory",
-                          directory,
-                          "cannot be created or written")
-          .what();
+        std::filesystem::remove(path, error);
       return "";
     }
 
@@ -288,24 +309,14 @@ namespace mpm
                      const unsigned int frames,
                      const double       time)
     {
+      if (const std::string failure = make_directories(directory);
+          !failure.empty())
+        return failure;
       std::error_code error;
-      std::filesystem::remove_all(directory + "/" + partial, error);
-      std::filesystem::create_directories(directory + "/" + partial, error);
-      if (error)
-        return InputError("Output/directory",
-                          directory,
-                          "cannot be created or written")
-          .what();
       for (const auto &entry :
            std::filesystem::directory_iterator(directory, error))
-        {
-          const std::string name       = entry.path().filename().string();
-          const auto        underscore = name.find('_');
-          if (is_own_output(name) && underscore != std::string::npos &&
-              name.size() > underscore + 5 &&
-              std::stoul(name.substr(underscore + 1, 5)) >= frames)
-            std::filesystem::remove(entry.path(), error);
-        }
+        if (frame_number(entry.path()) >= static_cast<int>(frames))
+          std::filesystem::remove(entry.path(), error);
       const std::string        statistics = directory + "/statistics.csv";
       std::ifstream            in(statistics);
       std::vector<std::string> kept;
@@ -389,10 +400,7 @@ namespace mpm
                                  resume != nullptr ? std::ios::app
                                                    : std::ios::out);
             if (!statistics_file)
-              failure = InputError("Output/directory",
-                                   prm.directory,
-                                   "cannot be created or written")
-                          .what();
+              failure = unwritable(prm.directory);
           }
       }
     raise_if_any_failed(failure, comm, true);
@@ -609,21 +617,15 @@ namespace mpm
     // returns; the .pvtu is the root's.
     if (is_root)
       {
-        std::vector<std::filesystem::path> written;
+        // The .vtu files first, then the .pvtu that names them.
         for (const auto &entry :
              std::filesystem::directory_iterator(partial_directory))
-          written.push_back(entry.path());
-        // The .vtu files first, the .pvtu that names them last.
-        std::sort(written.begin(),
-                  written.end(),
-                  [](const auto &a, const auto &b) {
-                    return (a.extension() == ".pvtu") <
-                           (b.extension() == ".pvtu");
-                  });
-        for (const auto &path : written)
-          std::filesystem::rename(path,
-                                  prm.directory + "/" +
-                                    path.filename().string());
+          if (entry.path().filename() != name)
+            std::filesystem::rename(entry.path(),
+                                    prm.directory + "/" +
+                                      entry.path().filename().string());
+        std::filesystem::rename(partial_directory + name,
+                                prm.directory + "/" + name);
         records.emplace_back(integrator.time(), name);
         write_pvd(prm.directory + "/" + base + ".pvd", records);
       }

@@ -100,35 +100,24 @@ namespace mpm
 
 
   template <int dim>
-  std::unique_ptr<RunState>
-  Simulation<dim>::read_restart_state() const
-  {
-    if (restart.empty())
-      return nullptr;
-    const std::string checkpoint = Checkpoint::locate(restart);
-    auto              state =
-      std::make_unique<RunState>(RunState::read(checkpoint + "/state.txt"));
-    state->values["checkpoint_found_in_old"] = checkpoint != restart;
-    return state;
-  }
-
-
-  template <int dim>
   void
   Simulation<dim>::run()
   {
     Timer wall;
     // Made here rather than in the constructor: a TimerOutput that is
     // destroyed while an input error unwinds the stack prints a warning.
-    timer                                  = std::make_unique<TimerOutput>(comm,
+    timer = std::make_unique<TimerOutput>(comm,
                                           pcout,
                                           TimerOutput::never,
                                           TimerOutput::wall_times);
-    const std::unique_ptr<RunState> resume = read_restart_state();
-    const std::string               checkpoint = resume == nullptr ? ""
-                                                 : resume->get("checkpoint_found_in_old") != 0
-                                                   ? restart + ".old"
-                                                   : restart;
+    // A restart: the checkpoint (the one '--restart' names, or what an
+    // interrupted swap left) and its state.
+    const std::string checkpoint =
+      restart.empty() ? "" : Checkpoint::locate(restart);
+    const std::unique_ptr<RunState> resume =
+      checkpoint.empty()
+        ? nullptr
+        : std::make_unique<RunState>(RunState::read(checkpoint + "/state.txt"));
     // A checkpoint is only read by the scene that wrote it (checked before
     // deal.II loads a grid that does not match, which it cannot report).
     auto throw_scene_differs = [&]() {
@@ -228,6 +217,8 @@ namespace mpm
         integrator->restore_state(*resume);
         verification->restore_state(*resume);
       }
+    else
+      next_checkpoint_time = checkpoint_parameters.interval;
     std::vector<std::string> columns = verification->columns();
     for (const auto &c : velocity_region->columns())
       columns.push_back(c);
@@ -270,8 +261,6 @@ namespace mpm
         pcout << "  restarted from '" << checkpoint << "' at t = " << t
               << ", step " << integrator->step_number() << std::endl;
       }
-    if (resume == nullptr)
-      next_checkpoint_time = checkpoint_parameters.interval;
     first_step           = integrator->step_number();
     last_checkpoint_wall = wall.wall_time();
 

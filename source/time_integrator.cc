@@ -145,29 +145,14 @@ namespace mpm
     mass_scaling = Parse::bounded_double(prm, s, "mass scaling", 1, 1e12);
     small_mass_fraction =
       Parse::bounded_double(prm, s, "small mass fraction", 0, 1, false, true);
-    {
-      const auto bounds = Utilities::split_string_list(prm.get("J bounds"));
-      bool       fine   = bounds.size() == 2;
-      try
-        {
-          if (fine)
-            {
-              J_min = Utilities::string_to_double(bounds[0]);
-              J_max = Utilities::string_to_double(bounds[1]);
-              fine =
-                J_min > 0 && J_min < 1 && J_max > 1 && std::isfinite(J_max);
-            }
-        }
-      catch (...)
-        {
-          fine = false;
-        }
-      if (!fine)
-        throw InputError("Simulation/J bounds",
-                         prm.get("J bounds"),
-                         "must be two numbers J_min, J_max with 0 < J_min < "
-                         "1 < J_max");
-    }
+    const auto J_bounds = Parse::double_list(prm, s, "J bounds", 2);
+    J_min               = J_bounds[0];
+    J_max               = J_bounds[1];
+    if (!(J_min > 0 && J_min < 1 && J_max > 1))
+      throw InputError("Simulation/J bounds",
+                       prm.get("J bounds"),
+                       "must be two numbers J_min, J_max with 0 < J_min < 1 "
+                       "< J_max");
     out_of_grid = prm.get("out of grid") == "stop" ? OutOfGridPolicy::stop
                                                    : OutOfGridPolicy::remove;
     prm.leave_subsection();
@@ -509,14 +494,15 @@ namespace mpm
         const Tensor<1, dim>          v = Fields::vector<dim>(q + l.velocity);
         const SymmetricTensor<2, dim> s = Fields::symmetric<dim>(q + l.stress);
         const unsigned int            b = q[l.body];
+        const double                  inverse_density = q[l.volume] / q[l.mass];
         // With mass scaling the waves see s rho.
         const double c2 = wave_modulus_of_body[b] *
                           (fixed_inverse_density_of_body[b] > 0
                              ? fixed_inverse_density_of_body[b]
-                             : q[l.volume] / q[l.mass]) /
+                             : inverse_density) /
                           prm.mass_scaling;
         const double v2 = v.norm_square();
-        const double J  = q[l.volume] / q[l.mass] * density_of_body[b];
+        const double J  = inverse_density * density_of_body[b];
         // J = 0 marks a rigid body's points (no guard there).
         if ((J < prm.J_min && J > 0) || J > prm.J_max)
           if (failure.empty())

@@ -47,9 +47,6 @@ namespace mpm
     /// After an output: write a checkpoint if one is due.
     void
     checkpoint_if_due(const double wall_seconds);
-    /// The checkpoint to continue from and its state (null: a new run).
-    std::unique_ptr<RunState>
-    read_restart_state() const;
     void
     print_progress(const double wall_seconds) const;
     /// "scheme USL, basis linear, transfer ..." for the start-up summary.

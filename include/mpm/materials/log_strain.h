@@ -437,14 +437,10 @@ namespace mpm
       cauchy_stress_3d(const double      *p,
                        const FieldLayout &layout) const override
       {
-        const Spectral        s   = stored_b_e(p, layout);
-        std::array<double, 3> tau = elasticity.stress(half_log(s));
-        const double          J   = jacobian(p, layout, reference_density);
-        for (double &t : tau)
-          t /= J;
+        auto [sigma, s] = stored_undamaged_stress(p, layout);
         if (damage.enabled())
-          damage.degrade(tau, p[layout.damage]);
-        return compose<dim>(tau, s);
+          damage.degrade(sigma, p[layout.damage]);
+        return compose<dim>(sigma, s);
       }
 
     private:
@@ -481,10 +477,28 @@ namespace mpm
         Fields::store_embedded<dim>(
           corrected ? stretch_tensor<dim>(elasticity.strain(tau), s) : trial,
           be_data);
+        return {cauchy(tau, p, layout), s};
+      }
+
+      /// Principal Cauchy stresses tau / J of principal Kirchhoff stresses.
+      std::array<double, 3>
+      cauchy(std::array<double, 3> tau,
+             const double         *p,
+             const FieldLayout    &layout) const
+      {
         const double J = jacobian(p, layout, reference_density);
         for (double &t : tau)
           t /= J;
-        return {tau, s};
+        return tau;
+      }
+
+      /// The undamaged principal Cauchy stresses of a point's stored b_e,
+      /// and their directions.
+      std::pair<std::array<double, 3>, Spectral>
+      stored_undamaged_stress(const double *p, const FieldLayout &layout) const
+      {
+        const Spectral s = stored_b_e(p, layout);
+        return {cauchy(elasticity.stress(half_log(s)), p, layout), s};
       }
 
       /// Evolve the point's damage with equivalent strain @p chi and soften
@@ -532,11 +546,7 @@ namespace mpm
             double *p = particle.get_properties().data();
             if (p[layout.body] == id)
               {
-                const Spectral        s     = stored_b_e(p, layout);
-                std::array<double, 3> sigma = elasticity.stress(half_log(s));
-                const double J = jacobian(p, layout, reference_density);
-                for (double &t : sigma)
-                  t /= J;
+                auto [sigma, s] = stored_undamaged_stress(p, layout);
                 apply_damage(p, layout, sigma, chi_bar[i++], dt);
                 Fields::store(Fields::in_plane<dim>(compose<dim>(sigma, s)),
                               p + layout.stress);
