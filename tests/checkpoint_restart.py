@@ -4,9 +4,9 @@
 1. A run to T/2 that checkpoints there, restarted to T, writes the same
    statistics.csv as a run straight to T: bit for bit on the same number
    of ranks (--np), to round-off (--tolerance) on --restart-np ranks.
-2. A run that checkpoints at every output and is killed (SIGKILL) at
-   random moments, several times, each time restarted from what the kill
-   left, still ends with the uninterrupted run's statistics bit for bit:
+2. A run that checkpoints at every output and is killed (SIGKILL, all
+   ranks) at random moments after each new checkpoint, several times,
+   each time restarted from what the kill left, still ends with the uninterrupted run's statistics bit for bit:
    the checkpoint on disk is always complete (a kill inside a checkpoint
    leaves the previous one).
 
@@ -14,7 +14,7 @@
       --end-time 3 [--np 2 --restart-np 1 --tolerance 1e-12] [--kills 4]
       [-s "Grid/cells=80" ...]
 """
-import argparse, os, random, subprocess, sys, tempfile, time
+import argparse, os, random, signal, subprocess, sys, tempfile, time
 
 
 def rows(directory):
@@ -34,6 +34,11 @@ def checkpoint_time(checkpoint):
         except OSError:
             pass
     return float("nan")
+
+
+def later(now, before):
+    """A checkpoint time after another (nan: none written yet)."""
+    return now == now and not now <= before
 
 
 def same(a, b, tolerance):
@@ -58,6 +63,41 @@ def same(a, b, tolerance):
 # mpirun as root (CI runs as root) and with more ranks than cores.
 os.environ.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                   OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def descendants(pid):
+    """The processes started by pid, recursively (mpirun's ranks)."""
+    try:
+        with open("/proc/%d/task/%d/children" % (pid, pid)) as f:
+            children = [int(c) for c in f.read().split()]
+    except OSError:
+        return []
+    return children + sum([descendants(c) for c in children], [])
+
+
+def alive(pid):
+    """Running (not gone, not a zombie)."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def kill_job(p):
+    """SIGKILL the run and all its ranks at once, as a scheduler or a node
+    failure does, and wait until none is left. Killing mpirun alone leaves
+    its ranks running on (they are not in its process group), and they
+    would go on writing into the directory the restart reads."""
+    ranks = descendants(p.pid)
+    for pid in [p.pid] + ranks:
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except OSError:
+            pass
+    p.wait()
+    while any(alive(pid) for pid in ranks):
+        time.sleep(0.05)
 
 
 def main():
@@ -89,7 +129,10 @@ def main():
     ok = True
     with tempfile.TemporaryDirectory() as tmp:
         straight, split = os.path.join(tmp, "straight"), os.path.join(tmp, "split")
+        started_at = time.time()
         run(a.np, straight, "-s", "Simulation/end time=%g" % a.end_time)
+        # Wall time per output (statistics.csv has a row per output).
+        per_output = (time.time() - started_at) / len(rows(straight))
         half = a.end_time / 2
         run(a.np, split, "-s", "Simulation/end time=%g" % half,
             "-s", "Checkpoint/interval=%g" % half)
@@ -127,9 +170,18 @@ def main():
                 p = subprocess.Popen(command(a.np, killed, *extra),
                                      stdout=subprocess.DEVNULL,
                                      stderr=subprocess.DEVNULL)
-                time.sleep(random.uniform(0.5, 1.5))
-                p.kill()
-                p.wait()
+                # Kill at a random moment after the run has written a
+                # checkpoint later than the last one (so each restart makes
+                # progress however loaded the machine is): often inside
+                # the next step's checkpoint.
+                last = checkpoint_time(checkpoint)
+                waited = 0
+                while p.poll() is None and waited < 600 and \
+                        not later(checkpoint_time(checkpoint), last):
+                    time.sleep(0.02)
+                    waited += 0.02
+                time.sleep(random.uniform(0, 1.5 * per_output))
+                kill_job(p)
                 started = started or os.path.exists(checkpoint) or \
                     os.path.exists(checkpoint + ".old")
                 print("kill %d: checkpoint %s" % (
