@@ -3,6 +3,7 @@
 #   [-DARGS="a;b"]            extra command-line arguments
 #   [-DEXPECT_EXIT=n]         exit code the run must have (default 0)
 #   [-DEXPECT_ERROR=regex]    stderr must match (bad input / stopped runs)
+#   [-DEXPECT_OUTPUT=regex]   stdout must match (warnings)
 #   [-DREFERENCE=file.output] statistics.csv without the wall-time column
 #                             must match this reviewed file (numdiff)
 #   [-DSTDOUT_REFERENCE=file] stdout must match this reviewed file exactly
@@ -42,6 +43,9 @@ if(DEFINED EXPECT_ERROR)
       message(FATAL_ERROR "stderr has more than one line:\n${err}")
     endif()
   endif()
+endif()
+if(DEFINED EXPECT_OUTPUT AND NOT out MATCHES "${EXPECT_OUTPUT}")
+  message(FATAL_ERROR "stdout does not match '${EXPECT_OUTPUT}':\n${out}")
 endif()
 foreach(f ${EXPECT_FILES})
   if(NOT EXISTS ${WORKDIR}/output/${f})

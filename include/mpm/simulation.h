@@ -53,6 +53,8 @@ namespace mpm
     std::string
     scheme_description() const;
     void
+    warn_of_volumetric_locking() const;
+    void
     print_performance(const double wall_seconds,
                       const double step_seconds) const;
 

@@ -58,6 +58,7 @@ namespace mpm
     double          mass_scaling;  ///< inertia factor, >= 1
     double          small_mass_fraction;
     double          J_min, J_max; ///< run-health guard on V / V0
+    bool            f_bar;        ///< volume change averaged over each cell
     OutOfGridPolicy out_of_grid;
   };
 
@@ -196,6 +197,10 @@ namespace mpm
                       const unsigned int slot);
     void
     update_stresses(const double dt);
+    /// F-bar: replace each point's volume change over the step by that of
+    /// its body's points in its cell (see there).
+    void
+    average_volume_change_over_cells(const double dt);
     /// Multi-body contact and rigid bodies at every owned node where a
     /// body has a field of its own; @p dt > 0 at the force update, where
     /// the rigid bodies' reactions are measured.
