@@ -212,10 +212,13 @@ namespace mpm
                                                        contact.get());
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
+    energy_guard = std::make_unique<EnergyGuard<dim>>(
+      integrator_parameters.energy_growth_bound, *points, comm);
     if (resume != nullptr)
       {
         integrator->restore_state(*resume);
         verification->restore_state(*resume);
+        energy_guard->restore_state(*resume);
       }
     else
       next_checkpoint_time = checkpoint_parameters.interval;
@@ -334,6 +337,7 @@ namespace mpm
     RunState state;
     integrator->save_state(state);
     verification->save_state(state);
+    energy_guard->save_state(state);
     output->save_state(state);
     state.values["last_output_time"]     = last_output_time;
     state.values["minimum_point_mass"]   = points->min_particle_mass();
@@ -355,6 +359,10 @@ namespace mpm
     auto extra = verification->evaluate(s, integrator->time());
     if (integrator->time() == last_output_time)
       return;
+    // Before anything is written: a run that fails keeps its last good
+    // output.
+    const auto [work, absolute_work] = integrator->external_work();
+    energy_guard->check(s, work, absolute_work, integrator->time());
     for (const double f :
          velocity_region->mean_force_since_last_call(integrator->time(), comm))
       extra.push_back(f);

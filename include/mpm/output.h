@@ -44,9 +44,13 @@ namespace mpm
   template <int dim>
   struct Statistics
   {
-    double                      kinetic_energy       = 0;
-    double                      strain_energy        = 0;
-    double                      gravitational_energy = 0;
+    double kinetic_energy       = 0;
+    double strain_energy        = 0;
+    double gravitational_energy = 0;
+    /// The part of the kinetic and gravitational energy that belongs to
+    /// rigid bodies (their motion is prescribed).
+    double                      rigid_kinetic_energy       = 0;
+    double                      rigid_gravitational_energy = 0;
     Tensor<1, dim>              momentum;
     Tensor<1, dim == 2 ? 1 : 3> angular_momentum;
     double                      mass           = 0;

@@ -15,6 +15,7 @@
 #include <mpm/contact/multi_field.h>
 #include <mpm/material_points.h>
 
+#include <array>
 #include <limits>
 
 namespace mpm
@@ -59,6 +60,7 @@ namespace mpm
     double          small_mass_fraction;
     double          J_min, J_max; ///< run-health guard on V / V0
     bool            f_bar;        ///< volume change averaged over each cell
+    double          energy_growth_bound; ///< run-health guard, 0: off
     OutOfGridPolicy out_of_grid;
   };
 
@@ -154,6 +156,16 @@ namespace mpm
     save_state(RunState &state) const;
     void
     restore_state(const RunState &state);
+
+    /**
+     * The work done on the bodies since the start by everything outside
+     * them but gravity (loads, body forces, rigid walls and bodies,
+     * velocity regions, the virtual fluid), and the sum of its absolute
+     * step increments; summed over the ranks (collective). The energy
+     * guard's external side of the balance.
+     */
+    std::array<double, 2>
+    external_work() const;
 
   private:
     // Components of the interleaved nodal vectors.
@@ -319,6 +331,9 @@ namespace mpm
     unsigned int          n_steps   = 0;
     types::particle_index n_removed = 0;
     std::string           failure; ///< first diagnosis of this step
+    /// This rank's share of the external work: in this step, and since the
+    /// start with its absolute sum; body forces' power in the last scatter.
+    double step_work = 0, work = 0, absolute_work = 0, body_force_power = 0;
   };
 } // namespace mpm
 

@@ -108,13 +108,14 @@ namespace mpm
 
 
   template <int dim>
-  void
+  double
   VelocityRegion<dim>::enforce(double            *u,
                                const unsigned int stride,
                                const unsigned int slot,
                                const double       dt)
   {
     Tensor<1, dim> impulse;
+    double         work = 0;
     for (const unsigned int i : nodes)
       {
         double *node = u + stride * i;
@@ -122,11 +123,17 @@ namespace mpm
           if (prm.constrained[d])
             {
               if (dt > 0)
-                impulse[d] += node[0] * (prm.velocity[d] - node[slot + d]);
+                {
+                  const double change =
+                    node[0] * (prm.velocity[d] - node[slot + d]);
+                  impulse[d] += change;
+                  work += change * prm.velocity[d];
+                }
               node[slot + d] = prm.velocity[d];
             }
       }
     meter.add(impulse);
+    return work;
   }
 
 

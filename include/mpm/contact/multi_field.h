@@ -113,6 +113,14 @@ namespace mpm
       return rigid_body_list;
     }
 
+    /// Velocity of rigid body @p r (in the order of rigid_bodies()) at the
+    /// time of the last set_time().
+    const Tensor<1, dim> &
+    rigid_velocity_of(const unsigned int r) const
+    {
+      return current_rigid_velocity[r];
+    }
+
     void
     add_rigid_impulses(const std::vector<Tensor<1, dim>> &impulses);
 

@@ -1,0 +1,122 @@
+#include <mpm/energy_guard.h>
+#include <mpm/parameters.h>
+
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  EnergyGuard<dim>::EnergyGuard(const double               bound,
+                                const MaterialPoints<dim> &points,
+                                MPI_Comm                   comm)
+    : bound(bound)
+    , points(points)
+    , comm(comm)
+  {
+  }
+
+
+  template <int dim>
+  void
+  EnergyGuard<dim>::check(const Statistics<dim> &s,
+                          const double           work,
+                          const double           absolute_work,
+                          const double           t)
+  {
+    if (bound == 0)
+      return;
+    const double gravity =
+      s.gravitational_energy - s.rigid_gravitational_energy;
+    const double energy =
+      s.kinetic_energy - s.rigid_kinetic_energy + s.strain_energy + gravity;
+    if (!have_initial_state)
+      {
+        initial_energy     = energy;
+        initial_motion     = energy - gravity;
+        initial_gravity    = gravity;
+        have_initial_state = true;
+        return;
+      }
+    largest_release     = std::max(largest_release, initial_gravity - gravity);
+    const double put_in = initial_motion + largest_release + absolute_work;
+    const double gain   = energy - initial_energy - work;
+    // Round-off of the sums (the gravitational energy is measured from the
+    // origin, and can be far larger than any change of it).
+    const double noise =
+      1e-10 * (std::abs(initial_gravity) + std::abs(initial_motion));
+    if (!(gain <= bound * put_in + noise))
+      {
+        std::ostringstream msg;
+        msg << "t = " << t << ": the energy of the bodies grew by " << gain
+            << " J beyond the work done on them (energy " << initial_energy
+            << " -> " << energy << " J, work " << work << " J), "
+            << (put_in > 0 ? gain / put_in : 0.) << " of the energy put in ("
+            << put_in
+            << " J), more than 'Simulation/energy growth bound' = " << bound
+            << "; the run is unstable (the fastest point: " << fastest_point()
+            << "; try a smaller CFL number, a FLIP fraction below 1, or "
+               "MUSL)";
+        throw RunError(msg.str());
+      }
+  }
+
+
+  template <int dim>
+  std::string
+  EnergyGuard<dim>::fastest_point() const
+  {
+    const FieldLayout &l       = points.layout();
+    double             fastest = -1;
+    std::string        description;
+    for (const auto &p : points.handler())
+      {
+        const double *q     = p.get_properties().data();
+        const double  speed = Fields::vector<dim>(q + l.velocity).norm();
+        if (speed > fastest)
+          {
+            fastest = speed;
+            std::ostringstream d;
+            d << "material point " << p.get_id() << " of body " << q[l.body]
+              << " at (" << p.get_location() << ") with speed " << speed
+              << " m/s";
+            description = d.str();
+          }
+      }
+    const double       overall = Utilities::MPI::max(fastest, comm);
+    const unsigned int owner =
+      Utilities::MPI::min(fastest == overall
+                            ? Utilities::MPI::this_mpi_process(comm)
+                            : Utilities::MPI::n_mpi_processes(comm),
+                          comm);
+    return Utilities::MPI::broadcast(comm, description, owner);
+  }
+
+
+  template <int dim>
+  void
+  EnergyGuard<dim>::save_state(RunState &state) const
+  {
+    state.values["energy_guard_have_initial_state"] = have_initial_state;
+    state.values["energy_guard_initial_energy"]     = initial_energy;
+    state.values["energy_guard_initial_motion"]     = initial_motion;
+    state.values["energy_guard_initial_gravity"]    = initial_gravity;
+    state.values["energy_guard_largest_release"]    = largest_release;
+  }
+
+
+  template <int dim>
+  void
+  EnergyGuard<dim>::restore_state(const RunState &state)
+  {
+    have_initial_state = state.get("energy_guard_have_initial_state") != 0;
+    initial_energy     = state.get("energy_guard_initial_energy");
+    initial_motion     = state.get("energy_guard_initial_motion");
+    initial_gravity    = state.get("energy_guard_initial_gravity");
+    largest_release    = state.get("energy_guard_largest_release");
+  }
+
+
+  template class EnergyGuard<1>;
+  template class EnergyGuard<2>;
+  template class EnergyGuard<3>;
+} // namespace mpm
