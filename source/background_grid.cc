@@ -241,10 +241,13 @@ namespace mpm
 
     if constexpr (dim > 1)
       if (!restart_file.empty())
-        // The saved partition on as many ranks, a balanced one otherwise;
-        // the points stay attached for MaterialPoints::restore().
+        // The saved partition on as many ranks (autopartition = false:
+        // the default makes it uniform, which moved the sums of a
+        // work-partitioned run to other ranks and changed their last
+        // bits), a uniform one otherwise; the points stay attached for
+        // MaterialPoints::restore().
         dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria).load(
-          restart_file);
+          restart_file, false);
       else if (work_estimate && Utilities::MPI::n_mpi_processes(comm) > 1)
         {
           // Partition by work, once, before DoFs and particles exist. The

@@ -105,30 +105,29 @@ namespace mpm
   {
     const FieldLayout &l = points.layout();
     Statistics         s;
-    for (const auto &p : points.handler())
-      {
-        const double        *q    = p.get_properties().data();
-        const double         m    = q[l.mass];
-        const Tensor<1, dim> v    = Fields::vector<dim>(q + l.velocity);
-        const Point<dim>     x    = p.get_location();
-        const auto          &body = points.bodies()[q[l.body]];
-        s.kinetic_energy += 0.5 * m * v.norm_square();
-        s.strain_energy += body.material->strain_energy(q, l);
-        s.gravitational_energy -= m * (gravity * x);
-        if (body.rigid_velocity)
-          {
-            s.rigid_kinetic_energy += 0.5 * m * v.norm_square();
-            s.rigid_gravitational_energy -= m * (gravity * x);
-          }
-        s.momentum += m * v;
-        if constexpr (dim == 2)
-          s.angular_momentum[0] += m * (x[0] * v[1] - x[1] * v[0]);
-        if constexpr (dim == 3)
-          s.angular_momentum += m * cross_product_3d(x, v);
-        s.mass += m;
-        s.momentum_scale += m * v.norm();
-        ++s.n_particles;
-      }
+    points.for_each_by_cell([&](const auto &p) {
+      const double        *q    = p.get_properties().data();
+      const double         m    = q[l.mass];
+      const Tensor<1, dim> v    = Fields::vector<dim>(q + l.velocity);
+      const Point<dim>     x    = p.get_location();
+      const auto          &body = points.bodies()[q[l.body]];
+      s.kinetic_energy += 0.5 * m * v.norm_square();
+      s.strain_energy += body.material->strain_energy(q, l);
+      s.gravitational_energy -= m * (gravity * x);
+      if (body.rigid_velocity)
+        {
+          s.rigid_kinetic_energy += 0.5 * m * v.norm_square();
+          s.rigid_gravitational_energy -= m * (gravity * x);
+        }
+      s.momentum += m * v;
+      if constexpr (dim == 2)
+        s.angular_momentum[0] += m * (x[0] * v[1] - x[1] * v[0]);
+      if constexpr (dim == 3)
+        s.angular_momentum += m * cross_product_3d(x, v);
+      s.mass += m;
+      s.momentum_scale += m * v.norm();
+      ++s.n_particles;
+    });
     // One reduction for all sums.
     std::vector<double> sums = {s.kinetic_energy,
                                 s.strain_energy,
@@ -470,7 +469,7 @@ namespace mpm
     if (prm.grid_output)
       write_grid();
     ++counter;
-    next_time = (prm.interval > 0 ? counter * prm.interval : 0);
+    next_time = (prm.interval > 0 ? multiple_of(counter, prm.interval) : 0);
   }
 
 

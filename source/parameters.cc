@@ -4,6 +4,8 @@
 
 #include <mpm/parameters.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -50,6 +52,15 @@ namespace mpm
     if (first == n_ranks)
       return;
     raise(Utilities::MPI::broadcast(comm, local_diagnosis, first));
+  }
+
+
+  double
+  multiple_of(const double k, const double interval)
+  {
+    char decimal[32];
+    std::snprintf(decimal, sizeof(decimal), "%.15g", k * interval);
+    return std::strtod(decimal, nullptr);
   }
 
 

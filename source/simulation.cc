@@ -333,7 +333,7 @@ namespace mpm
     TimerOutput::Scope scope(*timer, "checkpoint");
     if (c.interval > 0)
       next_checkpoint_time =
-        (std::floor(now / c.interval * (1 + 1e-12)) + 1) * c.interval;
+        multiple_of(std::floor(now / c.interval * (1 + 1e-12)) + 1, c.interval);
     RunState state;
     integrator->save_state(state);
     verification->save_state(state);

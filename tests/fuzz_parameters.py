@@ -11,6 +11,9 @@ and never in a crash (a signal, another exit code) or a hang (--timeout).
 
   fuzz_parameters.py --exe build/dealii-mpm             every case
   fuzz_parameters.py --exe ... --sample 60 --seed 1     a random sample
+  fuzz_parameters.py --exe ... --report                 also list the
+      input errors that name another parameter than the bad one, and the
+      stopped runs, for review (they are not failures)
 """
 import argparse, glob, os, random, re, subprocess, sys, tempfile
 
@@ -50,6 +53,19 @@ def verdict(returncode, stderr):
     return "exit code %d (crash): %s" % (returncode, message[-300:])
 
 
+def report(path, value, returncode, message, scene):
+    """Print an input error that names another parameter than @p path,
+    and a stopped run, for review."""
+    if returncode == 1:
+        named = re.search(r"parameter '([^']*)'", message)
+        if named and named.group(1) != path:
+            print("OTHER %s: %s = '%s': %s" % (scene, path, value, message),
+                  flush=True)
+    elif returncode == 2:
+        print("STOPPED %s: %s = '%s': %s" % (scene, path, value,
+                                             message[:300]), flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(
         description=__doc__,
@@ -59,6 +75,7 @@ def main():
                         help="run this many random cases (0: all)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--timeout", type=float, default=60)
+    parser.add_argument("--report", action="store_true")
     a = parser.parse_args()
     # The scenes that are malformed on purpose (their own tests) are left
     # out.
@@ -90,6 +107,9 @@ def main():
                 counts[r.returncode] = counts.get(r.returncode, 0) + 1
             except subprocess.TimeoutExpired:
                 problem = "no answer within %g s (a hang?)" % a.timeout
+            if a.report and not problem:
+                report(path, value, r.returncode, r.stderr.strip(),
+                       os.path.relpath(scene, TOP))
             if problem:
                 failures += 1
                 print("FAIL %s: %s = '%s': %s" % (

@@ -572,6 +572,14 @@ add_test(NAME checkpoint_restart_mpi2
 add_test(NAME checkpoint_restart_2_to_1
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
     ${restart_scene} --np 2 --restart-np 1 --tolerance 1e-12)
+#     The Glen slab (MUSL, APIC, tractions, initial stress, two bodies) at
+#     T/2 = 0.3: bit for bit since output times are decimal multiples of
+#     the interval (6 x 0.05 was 0.30000000000000004, where the run to 0.3
+#     ended at 0.3 and so took another last step).
+add_test(NAME checkpoint_restart_glen_slab
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
+    --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_SOURCE_DIR}/benchmarks/glaciology/glen_slab.prm
+    --end-time 0.6)
 mpm_test(bad_restart_missing PRM two_disks.prm EXIT 1 ARGS --restart nowhere
   ERROR "parameter '--restart' = 'nowhere': holds no complete checkpoint")
 mpm_test(bad_checkpoint_1d PRM vibrating_bar.prm EXIT 1 ARGS -s "Checkpoint/interval=0.1"

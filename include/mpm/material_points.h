@@ -202,6 +202,21 @@ namespace mpm
     restore(const double minimum_point_mass);
 
     /**
+     * Call @p f with every locally owned point, cell by cell in the grid's
+     * order (the order of the step's loops). The handler's own order
+     * differs after a restart (points come back sorted by cell), and sums
+     * that cancel, like the momentum, would then differ in their last bits.
+     */
+    template <typename Function>
+    void
+    for_each_by_cell(const Function &f) const
+    {
+      for (const unsigned int index : grid.locally_owned_cells())
+        for (const auto &p : particles.particles_in_cell(grid.cell(index)))
+          f(p);
+    }
+
+    /**
      * Put points back in their cells after their positions changed: update
      * reference coordinates of those that stayed (almost all), move those
      * that left their cell, and only if some left this rank's cells do the

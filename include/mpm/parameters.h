@@ -56,6 +56,16 @@ namespace mpm
                       const bool         input_error = false);
 
   /**
+   * k * @p interval, rounded to the double nearest its 15-digit decimal: the
+   * output and checkpoint times land on the decimals a user writes. 6 *
+   * 0.05 is 0.30000000000000004 in binary, and a run to 'end time = 0.3'
+   * must end where a longer run writes that output, or a restart there
+   * continues from a step that differs in the last bit.
+   */
+  double
+  multiple_of(const double k, const double interval);
+
+  /**
    * Helpers that read an entry of the current subsection of @p prm and
    * check it, so that every check produces the same kind of message. The
    * @p path is the subsection path used in messages ("Body 0/density").
