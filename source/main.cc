@@ -218,6 +218,17 @@ namespace
       return sections.count(path) > 0;
     }
 
+    /// The written sections whose path starts with @p prefix.
+    std::vector<std::string>
+    sections_starting_with(const std::string &prefix) const
+    {
+      std::vector<std::string> found;
+      for (const auto &[path, line] : sections)
+        if (path.rfind(prefix, 0) == 0)
+          found.push_back(path);
+      return found;
+    }
+
   private:
     static std::string
     path(const std::vector<std::string> &stack, const std::string &name)
@@ -249,7 +260,8 @@ namespace
 
 
   /// Every one of the @p n numbered sections '@p parent/@p kind N' the
-  /// count @p count_path declares must be written.
+  /// count @p count_path declares must be written, and no other (deal.II
+  /// would reject it naming only a line).
   void
   check_numbered_sections(const SceneText   &text,
                           const std::string &parent,
@@ -264,6 +276,24 @@ namespace
                               "but the scene has no section '" + parent + "/" +
                                 kind + " " + std::to_string(i) +
                                 "': describe each of them");
+    const std::string prefix = parent + "/" + kind + " ";
+    for (const auto &section : text.sections_starting_with(prefix))
+      {
+        const std::string number =
+          section.substr(prefix.size(),
+                         section.find('/', prefix.size()) - prefix.size());
+        const bool counted =
+          !number.empty() &&
+          number.find_first_not_of("0123456789") == std::string::npos &&
+          std::stoul(number) < n;
+        if (!counted)
+          throw mpm::InputError(count_path,
+                                std::to_string(n),
+                                "but the scene has a section '" + prefix +
+                                  number +
+                                  "': raise the count or remove "
+                                  "the section");
+      }
   }
 
 

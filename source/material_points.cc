@@ -269,11 +269,14 @@ namespace mpm
     if (!fits && !clip_to_grid)
       {
         std::ostringstream s;
-        s << "(" << lower_corner << ") to (" << upper_corner << ")";
-        throw InputError(name + "/" + shape->extent_parameter(),
-                         s.str(),
-                         "the body must lie inside the grid box (or set "
-                         "'clip to grid' to keep the part inside)");
+        const auto         names = shape->extent_parameters();
+        s << "parameter" << (names.size() > 1 ? "s" : "");
+        for (unsigned int i = 0; i < names.size(); ++i)
+          s << (i > 0 ? ", '" : " '") << name << "/" << names[i] << "'";
+        s << ": the body spans (" << lower_corner << ") to (" << upper_corner
+          << "); it must lie inside the grid box (or set 'clip to grid' to "
+             "keep the part inside)";
+        throw InputError(s.str());
       }
   }
 

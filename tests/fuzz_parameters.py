@@ -47,7 +47,7 @@ def verdict(returncode, stderr):
         lines = [l for l in message.splitlines() if l.strip()]
         if len(lines) != 1:
             return "input error of %d lines" % len(lines)
-        if not re.search(r"parameter '|section '|scene|option", lines[0]):
+        if not re.search(r"parameters? '|section '|scene|option", lines[0]):
             return "input error naming no parameter: " + lines[0]
         return None
     return "exit code %d (crash): %s" % (returncode, message[-300:])
@@ -57,8 +57,7 @@ def report(path, value, returncode, message, scene):
     """Print an input error that names another parameter than @p path,
     and a stopped run, for review."""
     if returncode == 1:
-        named = re.search(r"parameter '([^']*)'", message)
-        if named and named.group(1) != path:
+        if "'%s'" % path not in message:
             print("OTHER %s: %s = '%s': %s" % (scene, path, value, message),
                   flush=True)
     elif returncode == 2:

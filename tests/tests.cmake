@@ -49,7 +49,7 @@ mpm_test(bad_poisson_ratio PRM ${base} EXIT 1
   ERROR "parameter 'Bodies/Body 0/linear elastic/Poisson's ratio' = '0.5': allowed range is \\(-1, 0.5\\)")
 mpm_test(bad_body_outside_grid PRM ${base} EXIT 1
   ARGS -s "Bodies/Body 1/center=0.9"
-  ERROR "parameter 'Bodies/Body 1/radius'.*the body must lie inside the grid box")
+  ERROR "parameters 'Bodies/Body 1/center', 'Bodies/Body 1/radius': the body spans .* it must lie inside the grid box")
 mpm_test(bad_unknown_material PRM ${base} EXIT 1
   ARGS -s "Bodies/Body 0/material=granite"
   ERROR "input error: .*granite.*(linear elastic|pattern)")
@@ -645,3 +645,11 @@ mpm_test(bad_cfl_number PRM two_disks.prm EXIT 1 ARGS -s "Simulation/CFL number=
 mpm_test(bad_energy_growth_bound PRM two_disks.prm EXIT 1
   ARGS -s "Simulation/energy growth bound=-1"
   ERROR "parameter 'Simulation/energy growth bound' = '-1': ")
+#     Bad values that used to name a sibling parameter (found by the
+#     fuzzer's --report) now name both that set the quantity, and a section
+#     beyond its count names the count, not just a line of the file.
+mpm_test(bad_box_corners PRM block_settling.prm EXIT 1 ARGS -s "Bodies/Body 0/lower corner=1e308"
+  ERROR "parameters 'Bodies/Body 0/lower corner', 'Bodies/Body 0/upper corner' = '1e308', '0.5': the upper corner must exceed the lower corner in every direction")
+mpm_test(bad_extra_wall_section PRM ../benchmarks/contact/inclined_plane.prm EXIT 1
+  ARGS -s "Boundary conditions/number of rigid walls=0"
+  ERROR "parameter 'Boundary conditions/number of rigid walls' = '0': but the scene has a section 'Boundary conditions/Rigid wall 0': raise the count or remove the section")

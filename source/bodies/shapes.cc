@@ -48,9 +48,12 @@ namespace mpm
       {
         for (unsigned int d = 0; d < dim; ++d)
           if (!(upper[d] > lower[d]))
-            throw InputError(path + "/upper corner",
-                             prm.get("upper corner"),
-                             "must exceed the lower corner in every direction");
+            throw InputError("parameters '" + path + "/lower corner', '" +
+                             path + "/upper corner' = '" +
+                             prm.get("lower corner") + "', '" +
+                             prm.get("upper corner") +
+                             "': the upper corner must exceed the lower corner "
+                             "in every direction");
       }
 
       bool
@@ -68,10 +71,10 @@ namespace mpm
         return BoundingBox<dim>({lower, upper});
       }
 
-      std::string
-      extent_parameter() const override
+      std::vector<std::string>
+      extent_parameters() const override
       {
-        return "upper corner";
+        return {"lower corner", "upper corner"};
       }
 
     private:
@@ -108,10 +111,10 @@ namespace mpm
         return BoundingBox<dim>({lower, upper});
       }
 
-      std::string
-      extent_parameter() const override
+      std::vector<std::string>
+      extent_parameters() const override
       {
-        return "radius";
+        return {"center", "radius"};
       }
 
     private:
@@ -162,10 +165,10 @@ namespace mpm
         return BoundingBox<3>({lower, upper});
       }
 
-      std::string
-      extent_parameter() const override
+      std::vector<std::string>
+      extent_parameters() const override
       {
-        return "radius";
+        return {"center", "radius"};
       }
 
     private:
@@ -241,10 +244,10 @@ namespace mpm
         return BoundingBox<2>(vertices);
       }
 
-      std::string
-      extent_parameter() const override
+      std::vector<std::string>
+      extent_parameters() const override
       {
-        return "vertices";
+        return {"vertices"};
       }
 
     private:

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace mpm
 {
@@ -41,9 +42,9 @@ namespace mpm
     virtual BoundingBox<dim>
     bounding_box() const = 0;
 
-    /// The parameter that sets the shape's extent, for messages.
-    virtual std::string
-    extent_parameter() const = 0;
+    /// The parameters that set the shape's extent, for messages.
+    virtual std::vector<std::string>
+    extent_parameters() const = 0;
   };
 } // namespace mpm
 
