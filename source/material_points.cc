@@ -655,6 +655,23 @@ namespace mpm
                 p[l.body]   = b;
                 for (unsigned int d = 0; d < dim; ++d)
                   p[l.velocity + d] = velocity->value(x, d);
+                // A speed whose square overflows is a typo, not physics:
+                // the first step would stop on a non-finite point.
+                if (overlap.empty() &&
+                    !std::isfinite(
+                      Fields::vector<dim>(p.data() + l.velocity).norm_square()))
+                  {
+                    std::ostringstream at;
+                    at << "is infinite or overflows at (" << x
+                       << "); give a finite velocity";
+                    std::string given;
+                    for (const auto &e : body.initial_velocity)
+                      given += (given.empty() ? "" : "; ") + e;
+                    overlap = InputError(body.name + "/initial velocity",
+                                         given,
+                                         at.str())
+                                .what();
+                  }
                 if (l.deformation_gradient != FieldLayout::absent)
                   for (unsigned int d = 0; d < dim; ++d)
                     p[l.deformation_gradient + d * dim + d] = 1.;

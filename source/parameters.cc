@@ -141,9 +141,13 @@ namespace mpm
                            text,
                            "must be a comma-separated list of numbers");
         }
+      // Beyond 1e15 (m, m/s, m/s^2) a value is a typo: squares and products
+      // of it overflow before a diagnosis could name it.
       for (const double v : values)
-        if (!std::isfinite(v))
-          throw InputError(join(path, name), text, "must be finite");
+        if (!(std::abs(v) <= 1e15))
+          throw InputError(join(path, name),
+                           text,
+                           "must be finite numbers of magnitude up to 1e15");
       if (values.empty())
         throw InputError(join(path, name),
                          text,
@@ -313,6 +317,21 @@ namespace mpm
       std::string text;
       for (const auto &e : expressions)
         text += (text.empty() ? "" : "; ") + e;
+      // muparser reads 'a, b' as two results and keeps the last: a vector
+      // written with commas would silently become one component.
+      for (const auto &e : expressions)
+        {
+          int depth = 0;
+          for (const char c : e)
+            {
+              depth += (c == '(') - (c == ')');
+              if (c == ',' && depth == 0)
+                throw InputError(parameter,
+                                 text,
+                                 "has a ',' outside parentheses; the "
+                                 "components of a vector are separated by ';'");
+            }
+        }
       // deal.II prints muparser's diagnosis to std::cerr before it throws;
       // capture it so that the user gets one line, with its gist.
       std::ostringstream captured;

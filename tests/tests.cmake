@@ -550,7 +550,7 @@ mpm_test(bad_constant_pi PRM two_disks.prm EXIT 1 ARGS -s "Simulation/constants=
 mpm_test(bad_empty_vector PRM two_disks.prm EXIT 1 ARGS -s "Simulation/gravity="
   ERROR "parameter 'Simulation/gravity' = '': is empty: give 2 comma-separated numbers")
 mpm_test(bad_huge_corner PRM two_disks.prm EXIT 1 ARGS -s "Grid/upper corner=1e308"
-  ERROR "parameter 'Grid/upper corner' = '1e308': coordinates must lie in")
+  ERROR "parameter 'Grid/upper corner' = '1e308': must be finite numbers of magnitude up to 1e15")
 mpm_test(bad_grid_too_large PRM two_disks.prm EXIT 1 ARGS -s "Grid/cells=100000"
   ERROR "parameter 'Grid/cells' = '100000': 1e.10 cells need about .* GB for the grid")
 #     Checkpoint and restart: restarted at T/2 the run equals the
@@ -648,8 +648,12 @@ mpm_test(bad_energy_growth_bound PRM two_disks.prm EXIT 1
 #     Bad values that used to name a sibling parameter (found by the
 #     fuzzer's --report) now name both that set the quantity, and a section
 #     beyond its count names the count, not just a line of the file.
-mpm_test(bad_box_corners PRM block_settling.prm EXIT 1 ARGS -s "Bodies/Body 0/lower corner=1e308"
-  ERROR "parameters 'Bodies/Body 0/lower corner', 'Bodies/Body 0/upper corner' = '1e308', '0.5': the upper corner must exceed the lower corner in every direction")
+mpm_test(bad_box_corners PRM block_settling.prm EXIT 1 ARGS -s "Bodies/Body 0/lower corner=0.6"
+  ERROR "parameters 'Bodies/Body 0/lower corner', 'Bodies/Body 0/upper corner' = '0.6', '0.5': the upper corner must exceed the lower corner in every direction")
+mpm_test(bad_initial_velocity_commas PRM two_disks.prm EXIT 1 ARGS -s "Bodies/Body 0/initial velocity=0.1, 0"
+  ERROR "parameter 'Bodies/Body 0/initial velocity' = '0.1, 0; 0.1, 0': has a ',' outside parentheses; the components of a vector are separated by ';'")
+mpm_test(bad_initial_velocity_overflow PRM two_disks.prm EXIT 1 ARGS -s "Bodies/Body 0/initial velocity=1e200*x"
+  ERROR "parameter 'Bodies/Body 0/initial velocity' = '1e200.x; 1e200.x': is infinite or overflows at")
 mpm_test(bad_extra_wall_section PRM ../benchmarks/contact/inclined_plane.prm EXIT 1
   ARGS -s "Boundary conditions/number of rigid walls=0"
   ERROR "parameter 'Boundary conditions/number of rigid walls' = '0': but the scene has a section 'Boundary conditions/Rigid wall 0': raise the count or remove the section")

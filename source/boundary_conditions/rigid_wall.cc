@@ -64,10 +64,11 @@ namespace mpm
       point = Parse::point<dim>(prm, path, "point");
       // The normal may be given with 3 components in any dimension.
       const auto values = Utilities::split_string_list(prm.get("normal"));
-      if (values.size() < dim)
+      if (values.size() != dim && values.size() != 3)
         throw InputError(path + "/normal",
                          prm.get("normal"),
-                         "expects at least " + std::to_string(dim) +
+                         "expects " + std::to_string(dim) +
+                           (dim < 3 ? " (or 3)" : "") +
                            " comma-separated values");
       for (unsigned int d = 0; d < dim; ++d)
         try
