@@ -233,11 +233,11 @@ namespace mpm
 
     if constexpr (dim > 1)
       if (!restart_file.empty())
-        // The saved partition on as many ranks (autopartition = false:
-        // the default makes it uniform, which moved the sums of a
-        // work-partitioned run to other ranks and changed their last
-        // bits), a uniform one otherwise; the points stay attached for
-        // MaterialPoints::restore().
+        // The points stay attached for MaterialPoints::restore(). The
+        // partition comes back uniform, even with autopartition = false
+        // (measured: a work-weighted 161 / 399 cells came back 280 / 280),
+        // so a work-partitioned run's sums move to other ranks after a
+        // restart and can differ in their last bits (doc/architecture.md).
         dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria).load(
           restart_file, false);
       else if (work_estimate && Utilities::MPI::n_mpi_processes(comm) > 1)
