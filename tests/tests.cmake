@@ -657,3 +657,9 @@ mpm_test(bad_initial_velocity_overflow PRM two_disks.prm EXIT 1 ARGS -s "Bodies/
 mpm_test(bad_extra_wall_section PRM ../benchmarks/contact/inclined_plane.prm EXIT 1
   ARGS -s "Boundary conditions/number of rigid walls=0"
   ERROR "parameter 'Boundary conditions/number of rigid walls' = '0': but the scene has a section 'Boundary conditions/Rigid wall 0': raise the count or remove the section")
+mpm_test(bad_rigid_velocity_huge PRM ../benchmarks/contact/rolling_disk.prm EXIT 1
+  ARGS -s "Bodies/Body 1/rigid velocity=1e308"
+  ERROR "parameter 'Bodies/Body 1/rigid velocity' gives .1e.308 1e.308. at t = 0: a velocity must be finite and below 1e15 m/s")
+mpm_test(bad_initial_stress_huge PRM ../benchmarks/glaciology/glen_slab.prm EXIT 1
+  ARGS -s "Bodies/Body 0/initial stress=1e308"
+  ERROR "parameter 'Bodies/Body 0/initial stress' = '1e308; 1e308; 1e308; 1e308': the stress .* is infinite or beyond 1e15 Pa")

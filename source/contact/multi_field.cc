@@ -2,6 +2,7 @@
 #include <mpm/parameters.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace mpm
 {
@@ -79,6 +80,16 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           current_rigid_velocity[r][d] =
             rigid_velocity[r]->value(Point<dim>(), d);
+        // The same on every rank (a function of t alone): no hang.
+        if (!(current_rigid_velocity[r].norm() <= 1e15))
+          {
+            std::ostringstream s;
+            s << "parameter 'Bodies/Body " << rigid_body_list[r]
+              << "/rigid velocity' gives (" << current_rigid_velocity[r]
+              << ") at t = " << t
+              << ": a velocity must be finite and below 1e15 m/s";
+            throw InputError(s.str());
+          }
       }
   }
 
