@@ -274,8 +274,9 @@ namespace mpm
         for (unsigned int i = 0; i < names.size(); ++i)
           s << (i > 0 ? ", '" : " '") << name << "/" << names[i] << "'";
         s << ": the body spans (" << lower_corner << ") to (" << upper_corner
-          << "); it must lie inside the grid box (or set 'clip to grid' to "
-             "keep the part inside)";
+          << "); it must lie inside the grid box ('Grid/lower corner' to "
+             "'Grid/upper corner'), or set 'clip to grid' to keep the part "
+             "inside";
         throw InputError(s.str());
       }
   }

@@ -259,6 +259,10 @@ namespace mpm
     /// position.
     void
     make_point_loads(const double dt);
+    /// Add @p weight times the point loads' power at the points' current
+    /// velocities to the step's external work.
+    void
+    add_point_load_work(const double weight);
     /// L at a point from the nodal velocities in @p slot of the nodal
     /// array @p u (the point's field, node stride @p stride; small-mass
     /// guard).
