@@ -434,7 +434,21 @@ namespace mpm
     raise_if_any_failed(failure, comm);
     if (points.layout().point_load != FieldLayout::absent)
       add_point_load_work(0.5 * dt);
-    step_work += dt * body_force_power;
+    // Body forces' work by the trapezoidal rule too: the scatter had their
+    // power at the start velocities.
+    if (has_body_forces)
+      for (auto *f : body_forces)
+        if (f != nullptr)
+          f->set_time(t + dt);
+    if (has_body_forces)
+      for (const auto &p : points.handler())
+        {
+          const double *q = p.get_properties().data();
+          body_force_power +=
+            q[points.layout().mass] *
+            (body_force(q) * Fields::vector<dim>(q + points.layout().velocity));
+        }
+    step_work += 0.5 * dt * body_force_power;
     work += step_work;
     absolute_work += std::abs(step_work);
     step_work        = 0;
@@ -993,13 +1007,11 @@ namespace mpm
                             data + (dim + 1) * slot_of(i, 0),
                             impulse);
     if (dt > 0)
-      {
-        contact->add_rigid_impulses(impulse);
-        // The rigid body's reaction works at its velocity (an upper bound:
-        // friction's share is dissipated).
-        for (unsigned int r = 0; r < impulse.size(); ++r)
-          step_work += impulse[r] * contact->rigid_velocity_of(r);
-      }
+      contact->add_rigid_impulses(impulse);
+    // The rigid body's reaction works at its velocity (an upper bound:
+    // friction's share is dissipated), at both velocity updates.
+    for (unsigned int r = 0; r < impulse.size(); ++r)
+      step_work += impulse[r] * contact->rigid_velocity_of(r);
   }
 
 

@@ -122,13 +122,14 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           if (prm.constrained[d])
             {
+              // The work counts at both velocity updates (the first, from
+              // the momenta, sets a body at rest moving); the force meter
+              // only at the force update.
+              const double change =
+                node[0] * (prm.velocity[d] - node[slot + d]);
               if (dt > 0)
-                {
-                  const double change =
-                    node[0] * (prm.velocity[d] - node[slot + d]);
-                  impulse[d] += change;
-                  work += change * prm.velocity[d];
-                }
+                impulse[d] += change;
+              work += change * prm.velocity[d];
               node[slot + d] = prm.velocity[d];
             }
       }

@@ -58,9 +58,10 @@ namespace mpm
      * Set the velocity of the region's nodes in the interleaved nodal
      * array @p u (stride @p stride, mass at offset 0, velocity at
      * @p slot). If @p dt > 0 the change is the region's force over dt and
-     * is added to the impulse; returned is then the work the region did,
-     * m (v_region - v) . v_region summed over its nodes (a constraint's
-     * force works at the velocity it imposes; a fixed region does none).
+     * is added to the impulse. Returned is the work the region did,
+     * m (v_region - v) . v_region summed over its nodes, at either update
+     * (a constraint's force works at the velocity it imposes; a fixed
+     * region does none).
      */
     double
     enforce(double            *u,
