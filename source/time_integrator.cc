@@ -432,27 +432,7 @@ namespace mpm
 
     with_scene_basis([&](const auto &basis) { advance(basis, dt); });
     raise_if_any_failed(failure, comm);
-    if (points.layout().point_load != FieldLayout::absent)
-      add_point_load_work(0.5 * dt);
-    // Body forces' work by the trapezoidal rule too: the scatter had their
-    // power at the start velocities.
-    if (has_body_forces)
-      for (auto *f : body_forces)
-        if (f != nullptr)
-          f->set_time(t + dt);
-    if (has_body_forces)
-      for (const auto &p : points.handler())
-        {
-          const double *q = p.get_properties().data();
-          body_force_power +=
-            q[points.layout().mass] *
-            (body_force(q) * Fields::vector<dim>(q + points.layout().velocity));
-        }
-    step_work += 0.5 * dt * body_force_power;
-    work += step_work;
-    absolute_work += std::abs(step_work);
-    step_work        = 0;
-    body_force_power = 0;
+    close_external_work(dt);
 
     {
       TimerOutput::Scope scope(timer, "relocate");
@@ -855,6 +835,40 @@ namespace mpm
 
 
   /**
+   * End the step's account of external work: the second halves of the
+   * trapezoidal rules (point loads and body forces at the new velocities;
+   * the first halves were taken at the start), then the totals. Extra
+   * passes over the points only in scenes with such loads.
+   */
+  template <int dim>
+  void
+  TimeIntegrator<dim>::close_external_work(const double dt)
+  {
+    const FieldLayout &l = points.layout();
+    if (l.point_load != FieldLayout::absent)
+      add_point_load_work(0.5 * dt);
+    if (has_body_forces)
+      {
+        TimerOutput::Scope scope(timer, "external work");
+        for (auto *f : body_forces)
+          if (f != nullptr)
+            f->set_time(t + dt);
+        for (const auto &p : points.handler())
+          {
+            const double *q = p.get_properties().data();
+            body_force_power +=
+              q[l.mass] * (body_force(q) * Fields::vector<dim>(q + l.velocity));
+          }
+      }
+    step_work += 0.5 * dt * body_force_power;
+    work += step_work;
+    absolute_work += std::abs(step_work);
+    step_work        = 0;
+    body_force_power = 0;
+  }
+
+
+  /**
    * The work of the point loads (surface loads, penalty walls) over the
    * step, by the trapezoidal rule: half of it at the points' velocities
    * before the step, half after. At the start velocity alone, a load
@@ -865,6 +879,7 @@ namespace mpm
   void
   TimeIntegrator<dim>::add_point_load_work(const double weight)
   {
+    TimerOutput::Scope scope(timer, "external work");
     const FieldLayout &l = points.layout();
     for (const auto &p : points.handler())
       {

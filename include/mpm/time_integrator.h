@@ -263,6 +263,9 @@ namespace mpm
     /// velocities to the step's external work.
     void
     add_point_load_work(const double weight);
+    /// End the step's account of external work (see there).
+    void
+    close_external_work(const double dt);
     /// L at a point from the nodal velocities in @p slot of the nodal
     /// array @p u (the point's field, node stride @p stride; small-mass
     /// guard).
