@@ -6,6 +6,8 @@
 
 #include <deal.II/grid/grid_generator.h>
 
+#include <deal.II/particles/particle_handler.h>
+
 #include <mpm/background_grid.h>
 
 #include <algorithm>
@@ -205,6 +207,7 @@ namespace mpm
     const std::string                                     &restart_file)
     : prm(parameters)
     , comm(comm)
+    , work_estimate(work_estimate)
     , fe(1)
   {
     // p4est needs dim >= 2; a 1D grid is serial (verification problems).
@@ -232,18 +235,41 @@ namespace mpm
       *tria, repetitions, prm.lower_corner, prm.upper_corner, true);
 
     if constexpr (dim > 1)
-      if (!restart_file.empty())
-        // The points stay attached for MaterialPoints::restore(). The
-        // partition comes back uniform, even with autopartition = false
-        // (measured: a work-weighted 161 / 399 cells came back 280 / 280),
-        // so a work-partitioned run's sums move to other ranks after a
-        // restart and can differ in their last bits (doc/architecture.md).
-        dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria).load(
-          restart_file, false);
-      else if (work_estimate && Utilities::MPI::n_mpi_processes(comm) > 1)
+      {
+        if (!restart_file.empty())
+          // The points stay attached for MaterialPoints::restore(). deal.II
+          // 9.4 loads with a uniform partition; restore_partition() puts
+          // back the work partition once the points are unpacked.
+          dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria).load(
+            restart_file);
+        else
+          partition_by_work();
+      }
+
+    h = prm.cell_size();
+    for (unsigned int d = 0; d < dim; ++d)
+      inv_h[d] = 1. / h[d];
+    distribute_nodes();
+  }
+
+
+  template <int dim>
+  bool
+  BackgroundGrid<dim>::partitions_by_work() const
+  {
+    return dim > 1 && work_estimate &&
+           Utilities::MPI::n_mpi_processes(comm) > 1;
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::partition_by_work()
+  {
+    if constexpr (dim > 1)
+      if (partitions_by_work())
         {
-          // Partition by work, once, before DoFs and particles exist. The
-          // +1 keeps every weight positive and lets empty cells count a
+          // The +1 keeps every weight positive and lets empty cells count a
           // little (a point costs about 30 times a node per step).
           auto &p_tria =
             dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria);
@@ -255,11 +281,31 @@ namespace mpm
           p_tria.repartition();
           connection.disconnect();
         }
+  }
 
-    h = prm.cell_size();
-    for (unsigned int d = 0; d < dim; ++d)
-      inv_h[d] = 1. / h[d];
 
+  template <int dim>
+  void
+  BackgroundGrid<dim>::restore_partition(
+    Particles::ParticleHandler<dim, dim> &particles)
+  {
+    // The same weights on the same cells give p4est the same cuts as the
+    // run that wrote the checkpoint, so every nodal sum at a rank boundary
+    // runs in the same order and the restart is bit for bit (a uniform
+    // partition differed in the momentum's last digits).
+    if (!partitions_by_work())
+      return;
+    particles.prepare_for_coarsening_and_refinement();
+    partition_by_work();
+    particles.unpack_after_coarsening_and_refinement();
+    distribute_nodes();
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::distribute_nodes()
+  {
     dofs.reinit(*tria);
     dofs.distribute_dofs(fe);
     IndexSet relevant;
@@ -270,6 +316,10 @@ namespace mpm
                                                     comm);
     n_owned_nodes = scalar_partitioner->locally_owned_size();
 
+    owned_cells.clear();
+    node_constraints.clear();
+    node_frictions.clear();
+    node_dashpots.clear();
     build_cell_tables();
     build_node_constraints();
   }

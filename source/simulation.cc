@@ -186,6 +186,7 @@ namespace mpm
         if (resume->get("point_properties") != points->layout().n_properties)
           throw_scene_differs();
         points->restore(resume->get("minimum_point_mass"));
+        grid->restore_partition(points->handler());
       }
     velocity_region =
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);

@@ -18,6 +18,12 @@
 #include <memory>
 #include <vector>
 
+namespace dealii::Particles
+{
+  template <int dim, int spacedim>
+  class ParticleHandler;
+}
+
 namespace mpm
 {
   using namespace dealii;
@@ -258,20 +264,39 @@ namespace mpm
     bool
     contains(const Point<dim> &lower, const Point<dim> &upper) const;
 
+    /// After a restart's points are unpacked: partition the grid by the
+    /// work estimate again (the points move with their cells) and rebuild
+    /// the nodes. A checkpoint loads with a uniform partition.
+    void
+    restore_partition(Particles::ParticleHandler<dim, dim> &particles);
+
   private:
+    /// True if the grid is partitioned by a work estimate: there is one,
+    /// and more than one rank.
+    bool
+    partitions_by_work() const;
+    /// Partition the distributed grid by the work estimate (if
+    /// partitions_by_work()).
+    void
+    partition_by_work();
+    /// Number the nodes and build every table that depends on the
+    /// partition.
+    void
+    distribute_nodes();
     void
     build_cell_tables();
     void
     build_node_constraints();
 
-    const GridParameters<dim>           prm;
-    MPI_Comm                            comm;
-    std::unique_ptr<Triangulation<dim>> tria;
-    MappingCartesian<dim>               cartesian_mapping;
-    FE_Q<dim>                           fe;
-    DoFHandler<dim>                     dofs;
-    Tensor<1, dim>                      h;
-    Tensor<1, dim>                      inv_h;
+    const GridParameters<dim>                       prm;
+    MPI_Comm                                        comm;
+    std::function<unsigned int(const Point<dim> &)> work_estimate;
+    std::unique_ptr<Triangulation<dim>>             tria;
+    MappingCartesian<dim>                           cartesian_mapping;
+    FE_Q<dim>                                       fe;
+    DoFHandler<dim>                                 dofs;
+    Tensor<1, dim>                                  h;
+    Tensor<1, dim>                                  inv_h;
 
     std::shared_ptr<const Utilities::MPI::Partitioner> scalar_partitioner;
     unsigned int                                       n_owned_nodes;
