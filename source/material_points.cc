@@ -779,9 +779,7 @@ namespace mpm
         sigma0[rows[c]][cols[c]] = stress->value(x, c);
     try
       {
-        // Beyond 1e15 Pa a stress is a typo; its forces would overflow
-        // before a diagnosis could name it.
-        if (!(sigma0.norm() <= 1e15))
+        if (!(sigma0.norm() <= largest_input))
           throw std::domain_error("is infinite or beyond 1e15 Pa");
         body.material->initialise_point(properties, fields, sigma0);
       }
@@ -789,7 +787,7 @@ namespace mpm
       {
         std::ostringstream where;
         where << "the stress (" << sigma0 << ") at (" << x << ") " << e.what();
-        if (sigma0.norm() <= 1e15)
+        if (sigma0.norm() <= largest_input)
           where << " of '" << body.material_name << "'";
         std::string text;
         for (const auto &e : body.initial_stress)

@@ -141,10 +141,8 @@ namespace mpm
                            text,
                            "must be a comma-separated list of numbers");
         }
-      // Beyond 1e15 (m, m/s, m/s^2) a value is a typo: squares and products
-      // of it overflow before a diagnosis could name it.
       for (const double v : values)
-        if (!(std::abs(v) <= 1e15))
+        if (!(std::abs(v) <= largest_input))
           throw InputError(join(path, name),
                            text,
                            "must be finite numbers of magnitude up to 1e15");

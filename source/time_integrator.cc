@@ -617,7 +617,7 @@ namespace mpm
     // without contact carries nothing of it.
     auto scatter = [&](auto several_fields) {
       constexpr bool multi_field = decltype(several_fields)::value;
-      for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+      for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
         const double m     = q[l.mass];
         unsigned int field = 0;
         if constexpr (multi_field)
@@ -675,7 +675,12 @@ namespace mpm
             Tensor<1, dim> mg = m * gravity;
             if (with_body_forces)
               {
-                const Tensor<1, dim> mb = m * body_force(q);
+                const Tensor<1, dim> b = body_force(q);
+                check_load(b.norm(),
+                           q[l.body],
+                           "body force",
+                           p->get_location());
+                const Tensor<1, dim> mb = m * b;
                 mg += mb;
                 power += mb * Fields::vector<dim>(q + l.velocity);
               }
@@ -818,10 +823,19 @@ namespace mpm
           continue;
         Tensor<1, dim> load;
         if (pressures[b] != nullptr)
-          load -= pressures[b]->value(p.get_location()) * area;
+          {
+            const double pressure = pressures[b]->value(p.get_location());
+            check_load(std::abs(pressure), b, "pressure", p.get_location());
+            load -= pressure * area;
+          }
         if (tractions[b] != nullptr)
-          for (unsigned int d = 0; d < dim; ++d)
-            load[d] += tractions[b]->value(p.get_location(), d) * area.norm();
+          {
+            Tensor<1, dim> traction;
+            for (unsigned int d = 0; d < dim; ++d)
+              traction[d] = tractions[b]->value(p.get_location(), d);
+            check_load(traction.norm(), b, "traction", p.get_location());
+            load += traction * area.norm();
+          }
         Fields::store(load, q + l.point_load);
         if (with_moment)
           Fields::store(
@@ -887,6 +901,31 @@ namespace mpm
         step_work += weight * (Fields::vector<dim>(q + l.point_load) *
                                Fields::vector<dim>(q + l.velocity));
       }
+  }
+
+
+  /**
+   * A load given by an expression (pressure, traction, body force) can
+   * only be checked where it is evaluated. A magnitude beyond
+   * largest_input (or not finite) is a mistake in the scene: it is named
+   * here, before the forces it makes overflow the point's motion into a
+   * diagnosis that names no parameter.
+   */
+  template <int dim>
+  inline void
+  TimeIntegrator<dim>::check_load(const double       magnitude,
+                                  const unsigned int body,
+                                  const char        *name,
+                                  const Point<dim>  &x)
+  {
+    if (magnitude <= largest_input || !failure.empty())
+      return;
+    std::ostringstream msg;
+    msg << "step " << n_steps << ", t = " << t << ": parameter '"
+        << points.bodies()[body].name << "/" << name << "' is " << magnitude
+        << " in magnitude at (" << x << "): a load must be finite and at most "
+        << largest_input << " in magnitude (Pa, or m/s^2 for a body force)";
+    failure = msg.str();
   }
 
 

@@ -665,6 +665,14 @@ mpm_test(bad_initial_velocity_overflow PRM two_disks.prm EXIT 1 ARGS -s "Bodies/
 mpm_test(bad_extra_wall_section PRM ../benchmarks/contact/inclined_plane.prm EXIT 1
   ARGS -s "Boundary conditions/number of rigid walls=0"
   ERROR "parameter 'Boundary conditions/number of rigid walls' = '0': but the scene has a section 'Boundary conditions/Rigid wall 0': raise the count or remove the section")
+#     Loads given by expressions are checked where they are evaluated: a
+#     value beyond 1e15 names its parameter (it overflowed into a
+#     non-finite point that named none).
+mpm_test(bad_traction_huge PRM loaded_column.prm EXIT 2 ARGS -s "Simulation/constants=p0=1e308"
+  ERROR "run stopped: step 0, t = 0: parameter 'Bodies/Body 0/traction' is inf in magnitude at .[0-9. ]+.: a load must be finite and at most 1e.15")
+mpm_test(bad_body_force_huge PRM ../benchmarks/verification/vortex.prm EXIT 2
+  ARGS -s "Simulation/constants=A=1, mu=1e300, rho=1000"
+  ERROR "run stopped: step 1, t = [0-9.e-]+: parameter 'Bodies/Body 0/body force' is [0-9.e+inf]+ in magnitude at .[-0-9. ]+.: a load must be finite")
 mpm_test(bad_rigid_velocity_huge PRM ../benchmarks/contact/rolling_disk.prm EXIT 1
   ARGS -s "Bodies/Body 1/rigid velocity=1e308"
   ERROR "parameter 'Bodies/Body 1/rigid velocity' gives .1e.308 1e.308. at t = 0: a velocity must be finite and below 1e15 m/s")

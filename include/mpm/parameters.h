@@ -44,6 +44,13 @@ namespace mpm
   };
 
   /**
+   * The largest magnitude a number of the scene may have (in its SI unit:
+   * m, m/s, m/s^2, Pa). Beyond it a value is a typo, and squares and
+   * products of it overflow before a diagnosis could name it.
+   */
+  constexpr double largest_input = 1e15;
+
+  /**
    * Collective failure: every rank calls this at the same point; if any
    * rank has a non-empty @p local_diagnosis, all ranks throw RunError with
    * the diagnosis of the lowest such rank (InputError if @p input_error).

@@ -252,6 +252,14 @@ namespace mpm
     /// Body force per unit mass b(X, t) of a point (without gravity).
     Tensor<1, dim>
     body_force(const double *q) const;
+    /// Note a failure naming the parameter if a load expression of body
+    /// @p body (@p name: "traction", ...) has a value of @p magnitude
+    /// beyond largest_input (or not finite) at @p x.
+    void
+    check_load(const double       magnitude,
+               const unsigned int body,
+               const char        *name,
+               const Point<dim>  &x);
     /// Fill each point's 'point load' field for the coming step: the
     /// pressure and traction on a loaded surface at the point's position
     /// and the rigid wall's contact force. A pass of its own, only in scenes
