@@ -805,7 +805,7 @@ namespace mpm
   Point<dim>
   MaterialPoints<dim>::displace(const FunctionParser<dim> &displacement,
                                 const Point<dim>          &X,
-                                double                    *properties) const
+                                double                    *properties)
   {
     const FieldLayout &l = fields;
     Point<dim>         x = X;
@@ -817,15 +817,31 @@ namespace mpm
         F[c][c] += 1.;
       }
     const double J = determinant(F);
-    if (!(J > 0))
+    Point<dim>   reference;
+    // Checked here, where the parameter is known: a point moved out of the
+    // grid stopped the run as a point that left it, naming no parameter.
+    std::ostringstream where;
+    if (!std::isfinite(x.norm_square() + J))
+      where << "is not finite at X = (" << X << ") or in its gradient there";
+    else if (!(J > 0))
+      where << "det(I + grad u0) = " << J << " <= 0 at X = (" << X
+            << "): the initial displacement must not invert the body";
+    else if (grid.locate(x, reference) == BackgroundGrid<dim>::invalid)
+      where << "moves the point at X = (" << X << ") to (" << x
+            << "), outside the grid";
+    if (!where.str().empty())
       {
-        std::ostringstream where;
-        where << "det(I + grad u0) = " << J << " <= 0 at X = (" << X
-              << "): the initial displacement must not invert the body";
-        throw InputError(body_list[properties[l.body]].name +
-                           "/initial displacement",
-                         "",
-                         where.str());
+        const BodyParameters<dim> &body = body_list[properties[l.body]];
+        std::string                text;
+        for (const auto &e : body.initial_displacement)
+          text += (text.empty() ? "" : "; ") + e;
+        // Raised collectively after generation (one rank alone must not
+        // stop).
+        if (state_failure.empty())
+          state_failure =
+            InputError(body.name + "/initial displacement", text, where.str())
+              .what();
+        return X;
       }
     Fields::store(F, properties + l.deformation_gradient);
     properties[l.volume] *= J;

@@ -261,10 +261,12 @@ namespace mpm
                      double                    *properties);
     /// Apply the initial displacement to the point with reference position
     /// @p X and properties @p properties (F, volume); return where it starts.
+    /// A displacement that inverts the body or moves the point out of the
+    /// grid is noted in state_failure.
     Point<dim>
     displace(const FunctionParser<dim> &displacement,
              const Point<dim>          &X,
-             double                    *properties) const;
+             double                    *properties);
     std::string
     describe_leaving_point(
       const typename Particles::ParticleHandler<dim>::particle_iterator &p)
