@@ -10,12 +10,14 @@ bad values, one at a time, in a short run; each run must end in one of:
 and never in a crash (a signal, another exit code) or a hang (--timeout).
 
   fuzz_parameters.py --exe build/dealii-mpm             every case
+  fuzz_parameters.py --exe ... --jobs 2                 in 2 processes
   fuzz_parameters.py --exe ... --sample 60 --seed 1     a random sample
   fuzz_parameters.py --exe ... --report                 also list the
       input errors that name another parameter than the bad one, and the
       stopped runs, for review (they are not failures)
 """
-import argparse, glob, os, random, re, subprocess, sys, tempfile
+import argparse, concurrent.futures, glob, os, random, re, subprocess, sys
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(HERE)
@@ -75,6 +77,8 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--timeout", type=float, default=60)
     parser.add_argument("--report", action="store_true")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="cases run at once")
     a = parser.parse_args()
     # The scenes that are malformed on purpose (their own tests) are left
     # out.
@@ -89,10 +93,11 @@ def main():
     if a.sample:
         random.seed(a.seed)
         cases = random.sample(cases, min(a.sample, len(cases)))
-    failures = 0
-    counts = {0: 0, 1: 0, 2: 0}
-    with tempfile.TemporaryDirectory() as out:
-        for scene, path, value in cases:
+    def run(case):
+        """Run one case in a directory of its own; (case, exit code or
+        None for a timeout, stderr)."""
+        scene, path, value = case
+        with tempfile.TemporaryDirectory() as out:
             # Short runs: a few steps of each scene, then the bad value.
             command = [a.exe, scene, "-s", "Output/directory=" + out,
                        "-s", "Output/progress interval=1e9",
@@ -102,12 +107,21 @@ def main():
                 r = subprocess.run(command, stdout=subprocess.DEVNULL,
                                    stderr=subprocess.PIPE, text=True,
                                    timeout=a.timeout)
-                problem = verdict(r.returncode, r.stderr)
-                counts[r.returncode] = counts.get(r.returncode, 0) + 1
+                return case, r.returncode, r.stderr
             except subprocess.TimeoutExpired:
+                return case, None, ""
+
+    failures = 0
+    counts = {0: 0, 1: 0, 2: 0}
+    with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
+        for (scene, path, value), code, stderr in pool.map(run, cases):
+            if code is None:
                 problem = "no answer within %g s (a hang?)" % a.timeout
+            else:
+                problem = verdict(code, stderr)
+                counts[code] = counts.get(code, 0) + 1
             if a.report and not problem:
-                report(path, value, r.returncode, r.stderr.strip(),
+                report(path, value, code, stderr.strip(),
                        os.path.relpath(scene, TOP))
             if problem:
                 failures += 1
