@@ -227,8 +227,8 @@ namespace mpm
     types::particle_index
     relocate(const OutOfGridPolicy policy);
 
-    /// How often relocation needed deal.II's collective sort (a point
-    /// reached another rank's cell).
+    /// How often relocation ran deal.II's collective sort (a point reached
+    /// another rank's cell, or the points' data lost their cell order).
     unsigned int
     n_collective_sorts() const
     {
@@ -284,7 +284,12 @@ namespace mpm
     Particles::ParticleHandler<dim>        particles;
     double                                 minimum_mass;
     unsigned int                           n_full_sorts = 0;
-    std::string                            state_failure;
+    /// Points moved to another cell of this rank since the last collective
+    /// sort, and the fraction of the points beyond which the sort runs to
+    /// put their data back in cell order (see relocate()).
+    types::particle_index   moved_since_sort       = 0;
+    static constexpr double memory_order_tolerance = 0.05;
+    std::string             state_failure;
   };
 } // namespace mpm
 
