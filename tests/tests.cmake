@@ -673,6 +673,9 @@ mpm_test(bad_extra_wall_section PRM ../benchmarks/contact/inclined_plane.prm EXI
 mpm_test(bad_initial_displacement_out_of_grid PRM ../benchmarks/verification/mms_2d.prm EXIT 1
   ARGS -s "Simulation/constants=A=1, c=100, rho=1, mu=3846.153846153846, lambda=5769.230769230769, px=0, py=2.0943951023931953"
   ERROR "parameter 'Bodies/Body 0/initial displacement' = 'A.sin.pi.x..sin.px.. A.sin.pi.y..sin.py.': moves the point at X = .0.015625 0.328125. to .0.015625 1.07094., outside the grid")
+mpm_test(bad_region_velocity_nan PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ARGS -s "Boundary conditions/Velocity region/velocity=nan"
+  ERROR "parameter 'Boundary conditions/Velocity region/velocity' = 'nan': must be finite numbers of magnitude up to 1e15 .or 'free'.")
 mpm_test(bad_traction_huge PRM loaded_column.prm EXIT 2 ARGS -s "Simulation/constants=p0=1e308"
   ERROR "run stopped: step 0, t = 0: parameter 'Bodies/Body 0/traction' is inf in magnitude at .[0-9. ]+.: a load must be finite and at most 1e.15")
 mpm_test(bad_body_force_huge PRM ../benchmarks/verification/vortex.prm EXIT 2

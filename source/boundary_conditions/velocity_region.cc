@@ -81,6 +81,11 @@ namespace mpm
                                    text,
                                    "each entry must be a number or 'free'");
                 }
+            if (!(std::abs(velocity[d]) <= largest_input))
+              throw InputError(path + "/velocity",
+                               text,
+                               "must be finite numbers of magnitude up to "
+                               "1e15 (or 'free')");
           }
       }
     prm.leave_subsection();

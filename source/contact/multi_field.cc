@@ -81,7 +81,7 @@ namespace mpm
           current_rigid_velocity[r][d] =
             rigid_velocity[r]->value(Point<dim>(), d);
         // The same on every rank (a function of t alone): no hang.
-        if (!(current_rigid_velocity[r].norm() <= 1e15))
+        if (!(current_rigid_velocity[r].norm() <= largest_input))
           {
             std::ostringstream s;
             s << "parameter 'Bodies/Body " << rigid_body_list[r]
