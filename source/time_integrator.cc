@@ -895,11 +895,18 @@ namespace mpm
   {
     TimerOutput::Scope scope(timer, "external work");
     const FieldLayout &l = points.layout();
+    // A surface load acts at the surface, d from the point, where the
+    // velocity is v + L d: its power is F . v + (F (x) d) : L.
+    const bool at_surface = l.load_moment != FieldLayout::absent;
     for (const auto &p : points.handler())
       {
         const double *q = p.get_properties().data();
-        step_work += weight * (Fields::vector<dim>(q + l.point_load) *
-                               Fields::vector<dim>(q + l.velocity));
+        double        power = Fields::vector<dim>(q + l.point_load) *
+                       Fields::vector<dim>(q + l.velocity);
+        if (at_surface)
+          power += scalar_product(Fields::tensor<dim>(q + l.load_moment),
+                                  Fields::tensor<dim>(q + l.velocity_gradient));
+        step_work += weight * power;
       }
   }
 
