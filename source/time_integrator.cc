@@ -900,7 +900,7 @@ namespace mpm
     const bool at_surface = l.load_moment != FieldLayout::absent;
     for (const auto &p : points.handler())
       {
-        const double *q = p.get_properties().data();
+        const double *q     = p.get_properties().data();
         double        power = Fields::vector<dim>(q + l.point_load) *
                        Fields::vector<dim>(q + l.velocity);
         if (at_surface)
