@@ -146,6 +146,7 @@ namespace mpm
         }
       else
         {
+          points.handler().update_cached_numbers();
           points.handler().prepare_for_serialization();
           dynamic_cast<const parallel::distributed::Triangulation<dim> &>(
             grid.triangulation())

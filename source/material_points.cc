@@ -970,7 +970,10 @@ namespace mpm
 
     // Both calls below are collective (they count particles over all
     // ranks), so every rank must take the same branch.
-    int changes = (off_rank || disordered ? 1 : 0) | (removals.empty() ? 0 : 2);
+    // A move within the rank changes no count, and deal.II's count of
+    // them walks every point: it runs only when points were lost (a
+    // checkpoint updates the counts before it packs the points).
+    int changes = (off_rank || disordered ? 1 : 0) | (n_lost == 0 ? 0 : 2);
     if (Utilities::MPI::n_mpi_processes(comm) > 1)
       MPI_Allreduce(MPI_IN_PLACE, &changes, 1, MPI_INT, MPI_BOR, comm);
     if (changes & 1)
