@@ -960,8 +960,8 @@ namespace mpm
 
     // A point moved to another cell is stored where the property pool had
     // room, far from its new neighbours; as points flow, every loop walks
-    // memory at random (a settling block at nu = 0.35 ran at 2.3x the cost
-    // per point-step of one at nu = 0). deal.II's collective sort also
+    // memory at random (a settling block at nu = 0.35 ran at 2.3-2.9x the
+    // cost per point-step of one at nu = 0). deal.II's collective sort also
     // puts the pool back in cell order, so it runs once the moves since
     // the last one pass a fraction of the points (doc/performance.md).
     const bool disordered =
