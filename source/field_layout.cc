@@ -44,6 +44,8 @@ namespace mpm
       l.point_load = add("point load", dim);
     if (requests.wall_slips > 0)
       l.wall_slip = add("wall slip", dim * requests.wall_slips);
+    if (requests.macro_step)
+      l.macro_step = add("macro step", dim + dim * dim);
     return l;
   }
 

@@ -158,6 +158,7 @@ namespace mpm
     fields.deformation_gradient =
       integrator_parameters.basis == BasisType::cpgimp;
     fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
+    fields.macro_step      = integrator_parameters.macro_time_step > 0;
     for (const auto &body : body_parameters)
       {
         fields.surface_area = fields.surface_area || body.has_surface_loads();
@@ -233,6 +234,9 @@ namespace mpm
       columns.push_back(c);
     for (const auto &c : contact->columns())
       columns.push_back(c);
+    if (integrator_parameters.macro_time_step > 0)
+      for (const std::string c : {"macro_steps", "macro_mismatch"})
+        columns.push_back(c);
     if (output_parameters.body_extents)
       for (unsigned int b = 0; b < body_parameters.size(); ++b)
         for (unsigned int d = 0; d < dim; ++d)
@@ -377,6 +381,11 @@ namespace mpm
     for (const double f :
          contact->mean_forces_since_last_call(integrator->time(), comm))
       extra.push_back(f);
+    if (integrator_parameters.macro_time_step > 0)
+      {
+        extra.push_back(integrator->macro_step_number());
+        extra.push_back(integrator->largest_macro_mismatch());
+      }
     if (output_parameters.body_extents)
       for (const auto &[lower, upper] : points->body_extents())
         for (unsigned int d = 0; d < dim; ++d)
@@ -461,6 +470,16 @@ namespace mpm
     if (p.mass_scaling > 1)
       s << ", mass scaling " << p.mass_scaling << " (time step x "
         << std::sqrt(p.mass_scaling) << ")";
+    if (p.macro_time_step > 0)
+      {
+        s << ", macro steps of " << p.macro_time_step << " s with ";
+        if (p.substeps > 0)
+          s << p.substeps << " substeps";
+        else
+          s << "substeps from the CFL condition";
+        if (p.kinetic_damping)
+          s << ", kinetic damping";
+      }
     return s.str();
   }
 

@@ -1,6 +1,7 @@
 #include <mpm/basis.h>
 #include <mpm/parameters.h>
 #include <mpm/time_integrator.h>
+#include <mpm/time_integrator.templates.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -37,6 +38,66 @@ namespace mpm
                       "A fixed time step in s, or 0 to use the CFL "
                       "condition. A fixed step larger than the CFL-limited "
                       "one is an error.");
+    prm.declare_entry(
+      "macro time step",
+      "0",
+      Patterns::Anything(),
+      "Substepping (seed 003) in s, >= 0: the run advances in macro steps "
+      "of this length, each made of explicit substeps; after them the grid "
+      "velocity on the start-of-step configuration is reconstructed from "
+      "the points' secant motion (the closed-form APIC transfer), and the "
+      "macro-step operations ('kinetic damping') act on it. The points "
+      "keep the substeps' state. Output and end times cut a macro step "
+      "short. 0: off (plain explicit steps).");
+    prm.declare_entry(
+      "substeps",
+      "0",
+      Patterns::Integer(0, 1000000),
+      "Substeps per macro step, in [0, 1000000]: 0 takes as many equal ones "
+      "as the CFL condition needs (re-evaluated at every substep); S > 0 "
+      "takes S equal ones, and one beyond the CFL limit stops the run.");
+    prm.declare_entry(
+      "kinetic damping",
+      "false",
+      Patterns::Bool(),
+      "Macro-step operation for quasi-static runs (dynamic relaxation): when "
+      "the kinetic energy of the reconstructed grid velocity has fallen "
+      "since the last macro step (a peak has passed), every nodal velocity "
+      "is set to zero and the points take it (velocity and APIC's C_p). "
+      "Needs a macro time step.");
+    prm.declare_entry(
+      "macro reconstruction",
+      "APIC",
+      Patterns::Selection("APIC|least squares"),
+      "How the macro step's grid velocity is fitted to the points' secant "
+      "motion (seed 003): APIC, the closed form (lumped mass, one transfer), "
+      "or least squares, its system (4) with the consistent mass and "
+      "'least-squares weight' times the gradient term, solved by conjugate "
+      "gradients (Trilinos); single-field scenes only.");
+    prm.declare_entry(
+      "least-squares weight",
+      "0.25",
+      Patterns::Anything(),
+      "lambda / h^2 of the least-squares reconstruction, in [0, 100]: how "
+      "much the points' velocity gradients count beside their velocities; "
+      "0.25 is seed 003's natural scaling D = h^2/4 of the quadratic "
+      "B-spline.");
+    prm.declare_entry("least-squares preconditioner",
+                      "Jacobi",
+                      Patterns::Selection("Jacobi|AMG"),
+                      "Preconditioner of the least-squares conjugate "
+                      "gradients: Jacobi, or AMG (Trilinos ML).");
+    prm.declare_entry(
+      "Newmark gamma",
+      "0.5",
+      Patterns::Anything(),
+      "gamma of the explicit Newmark step (beta = 0, the only explicit "
+      "member), in [0.5, 1]: 0.5 is central difference, which the plain "
+      "step is (second order, no numerical damping); above it the "
+      "high frequencies are damped (amplitude loss per step about "
+      "(gamma - 1/2) (omega dt)^2 / 2) at first order in dt, and the CFL "
+      "time step is scaled by 1 / sqrt(2 gamma) to stay stable. USL with "
+      "FLIP only (doc/architecture.md).");
     prm.declare_entry("update scheme",
                       "USL",
                       Patterns::Selection("USL|USF|MUSL"),
@@ -185,96 +246,36 @@ namespace mpm
       Parse::bounded_double(prm, s, "energy growth bound", 0, 1e300);
     out_of_grid = prm.get("out of grid") == "stop" ? OutOfGridPolicy::stop
                                                    : OutOfGridPolicy::remove;
+    macro_time_step =
+      Parse::bounded_double(prm, s, "macro time step", 0, 1e300);
+    substeps        = prm.get_integer("substeps");
+    kinetic_damping = prm.get_bool("kinetic damping");
+    least_squares   = prm.get("macro reconstruction") == "least squares";
+    least_squares_weight =
+      Parse::bounded_double(prm, s, "least-squares weight", 0, 100);
+    least_squares_amg = prm.get("least-squares preconditioner") == "AMG";
+    newmark_gamma     = Parse::bounded_double(prm, s, "Newmark gamma", 0.5, 1);
+    if (newmark_gamma != 0.5 &&
+        (scheme != UpdateScheme::USL || transfer != Transfer::flip))
+      throw InputError("Simulation/Newmark gamma",
+                       prm.get("Newmark gamma"),
+                       "other than 0.5 needs 'Simulation/update scheme = "
+                       "USL' and 'Simulation/transfer = FLIP'");
+    if (macro_time_step > 0 && fixed_time_step > 0)
+      throw InputError("Simulation/time step",
+                       prm.get("time step"),
+                       "must be 0 with 'Simulation/macro time step' > 0 "
+                       "(the substeps are set by 'Simulation/substeps')");
+    if (macro_time_step == 0 && substeps > 0)
+      throw InputError("Simulation/substeps",
+                       prm.get("substeps"),
+                       "must be 0 without 'Simulation/macro time step'");
+    if (macro_time_step == 0 && kinetic_damping)
+      throw InputError("Simulation/kinetic damping",
+                       "true",
+                       "needs 'Simulation/macro time step' > 0 (it acts "
+                       "once per macro step)");
     prm.leave_subsection();
-  }
-
-
-
-  /**
-   * Visit every locally owned point cell by cell with its stencil: the
-   * nodes it touches (as local indices of the nodal vectors), the basis
-   * weights and gradients at its position. Every particle loop of the step
-   * goes through here, so the stencil is evaluated the same way everywhere.
-   */
-  template <int dim>
-  template <typename Basis, typename Kernel>
-  inline void
-  TimeIntegrator<dim>::for_each_point(const Basis &basis, const Kernel &kernel)
-  {
-    typename Basis::Stencil s;
-    Tensor<1, dim>          half_width;
-    // The node lists of the patterns seen so far in the current cell: the
-    // lookup of nodal-vector indices is done once per cell and pattern.
-    std::array<std::array<unsigned int, Basis::n_nodes>, Basis::n_patterns>
-                                     nodes;
-    Particles::ParticleHandler<dim> &particles = points.handler();
-    for (const unsigned int index : grid.locally_owned_cells())
-      {
-        const auto        &cell = grid.cell(index);
-        const unsigned int n    = particles.n_particles_in_cell(cell);
-        if (n == 0)
-          continue;
-        const auto   cell_coordinates = grid.cell_coordinates(index);
-        unsigned int known_patterns   = 0;
-        auto         p = particles.particles_in_cell(cell).begin();
-        for (unsigned int i = 0; i < n; ++i, ++p)
-          {
-            double *q = p->get_properties().data();
-            if constexpr (Basis::needs_half_width)
-              half_width = domain_half_width(q);
-            basis.evaluate(cell_coordinates,
-                           p->get_reference_location(),
-                           half_width,
-                           s);
-            auto &list = nodes[s.pattern];
-            if (!(known_patterns & (1u << s.pattern)))
-              {
-                basis.node_pattern(cell_coordinates, s, list);
-                for (auto &node : list)
-                  {
-                    node = grid.local_node(node);
-                    // Every stencil node must be owned or a ghost here (see
-                    // BackgroundGrid::local_node); Debug builds check it.
-                    Assert(node != BackgroundGrid<dim>::invalid,
-                           ExcMessage("a stencil node is not known on this "
-                                      "rank"));
-                  }
-                known_patterns |= 1u << s.pattern;
-              }
-            s.nodes = list.data();
-            kernel(p, q, s);
-          }
-      }
-  }
-
-
-  template <int dim>
-  inline Tensor<1, dim>
-  TimeIntegrator<dim>::domain_half_width(const double *q) const
-  {
-    const FieldLayout &l  = points.layout();
-    const double       l0 = initial_half_width_of_body[q[l.body]];
-    Tensor<1, dim>     half_width;
-    if (prm.basis == BasisType::cpgimp)
-      {
-        // The axis-aligned box around the deformed domain F [-l0, l0]^dim:
-        // exact for stretches along the axes, and never degenerate under
-        // rotation (the diagonal of F alone would vanish at 90 degrees).
-        // It is capped at half a cell, where the GIMP stencil ends.
-        const Tensor<1, dim> &h = grid.cell_size();
-        const double         *F = q + l.deformation_gradient;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            double extent = 0;
-            for (unsigned int e = 0; e < dim; ++e)
-              extent += std::abs(F[d * dim + e]) * h[e];
-            half_width[d] = std::clamp(l0 * extent / h[d], 1e-6, 0.5);
-          }
-      }
-    else
-      for (unsigned int d = 0; d < dim; ++d)
-        half_width[d] = l0;
-    return half_width;
   }
 
 
@@ -408,6 +409,28 @@ namespace mpm
                              allowed.str());
           }
       }
+    if (prm.least_squares && n_fields > 1)
+      throw InputError("Simulation/macro reconstruction",
+                       "least squares",
+                       "works on one velocity field; a scene with bodies in "
+                       "'Contact/bodies' or rigid bodies needs 'APIC'");
+    if (prm.macro_time_step > 0 && prm.substeps > 0)
+      {
+        const double limit = stable_time_step();
+        if (prm.macro_time_step / prm.substeps > limit * (1 + 1e-12))
+          {
+            std::ostringstream allowed;
+            allowed << "gives substeps of "
+                    << prm.macro_time_step / prm.substeps
+                    << " s, beyond the stability limit " << limit
+                    << " of the initial state; use at least "
+                    << std::ceil(prm.macro_time_step / limit)
+                    << ", or 0 to follow the CFL condition";
+            throw InputError("Simulation/substeps",
+                             std::to_string(prm.substeps),
+                             allowed.str());
+          }
+      }
   }
 
 
@@ -415,21 +438,36 @@ namespace mpm
   void
   TimeIntegrator<dim>::step(const double max_dt)
   {
-    double dt = stable_time_step();
-    if (prm.fixed_time_step > 0)
-      {
-        if (prm.fixed_time_step > dt * (1 + 1e-12))
-          throw RunError("step " + std::to_string(n_steps) +
-                         ": the fixed time step " +
-                         std::to_string(prm.fixed_time_step) +
-                         " exceeds the stability limit " + std::to_string(dt) +
-                         " of the current state (points sped up or "
-                         "compressed); use a smaller 'Simulation/time step' "
-                         "or 0 for the CFL condition");
-        dt = prm.fixed_time_step;
-      }
-    dt = std::min(dt, max_dt);
+    if (prm.macro_time_step > 0)
+      macro_step(std::min(prm.macro_time_step, max_dt));
+    else
+      explicit_step(std::min(explicit_time_step(), max_dt));
+  }
 
+
+  template <int dim>
+  double
+  TimeIntegrator<dim>::explicit_time_step()
+  {
+    const double dt = stable_time_step();
+    if (prm.fixed_time_step == 0)
+      return dt;
+    if (prm.fixed_time_step > dt * (1 + 1e-12))
+      throw RunError("step " + std::to_string(n_steps) +
+                     ": the fixed time step " +
+                     std::to_string(prm.fixed_time_step) +
+                     " exceeds the stability limit " + std::to_string(dt) +
+                     " of the current state (points sped up or "
+                     "compressed); use a smaller 'Simulation/time step' "
+                     "or 0 for the CFL condition");
+    return prm.fixed_time_step;
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::explicit_step(const double dt)
+  {
     with_scene_basis([&](const auto &basis) { advance(basis, dt); });
     raise_if_any_failed(failure, comm);
     close_external_work(dt);
@@ -441,18 +479,6 @@ namespace mpm
     t += dt;
     last_dt = dt;
     ++n_steps;
-  }
-
-
-  template <int dim>
-  template <typename F>
-  inline void
-  TimeIntegrator<dim>::with_scene_basis(const F &f) const
-  {
-    with_basis<dim>(prm.basis, [&](auto *tag) {
-      using Basis = std::remove_pointer_t<decltype(tag)>;
-      f(Basis(grid.parameters().n_cells, grid.cell_size()));
-    });
   }
 
 
@@ -569,7 +595,11 @@ namespace mpm
     raise_if_any_failed(failure, comm);
     const double max_speed = std::sqrt(Utilities::MPI::max(max_c2, comm)) +
                              std::sqrt(Utilities::MPI::max(max_v2, comm));
-    return prm.cfl_number *
+    // Newmark's gamma > 1/2 shrinks the stable range of omega dt from 2 to
+    // sqrt(2 / gamma) (benchmarks/verification/newmark_amplification.py).
+    const double newmark_factor =
+      prm.newmark_gamma > 0.5 ? std::sqrt(0.5 / prm.newmark_gamma) : 1.;
+    return prm.cfl_number * newmark_factor *
            std::min(grid.min_cell_size() / max_speed, viscous_time_step);
   }
 
@@ -988,6 +1018,10 @@ namespace mpm
     // Implicit in the damping term: unconditionally stable for any c.
     const double damping_factor = 1. / (1. + prm.damping * dt);
     const double alpha          = prm.local_damping;
+    // Newmark (see gather_to_particles): v_new is the velocity that moves
+    // the points, v_old + (gamma + 1/2) dt a.
+    const bool   newmark       = prm.newmark_gamma != 0.5;
+    const double motion_factor = prm.newmark_gamma + 0.5;
     for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
       {
         const double *node = g + n_sums * i;
@@ -1002,7 +1036,10 @@ namespace mpm
             if (alpha > 0)
               f -= alpha * std::abs(f) *
                    ((vel[v_old + d] > 0) - (vel[v_old + d] < 0));
-            vel[v_new + d] = (vel[v_old + d] + dt_m * f) * damping_factor;
+            const double v = (vel[v_old + d] + dt_m * f) * damping_factor;
+            vel[v_new + d] =
+              newmark ? vel[v_old + d] + motion_factor * (v - vel[v_old + d])
+                      : v;
           }
       }
     apply_velocity_constraints(v_new, dt);
@@ -1195,6 +1232,9 @@ namespace mpm
     const FieldLayout &l     = points.layout();
     const double      *u_all = grid_velocity.get_values();
     const double       alpha = prm.flip_fraction;
+    // Newmark's gamma (USL, FLIP): see grid_velocities_after_forces.
+    const bool   newmark          = kinematics && prm.newmark_gamma != 0.5;
+    const double increment_factor = 1. / (prm.newmark_gamma + 0.5);
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
     const unsigned int                         fields_per_node = n_fields;
     const unsigned int *fields_of_body = field_of_body.data();
@@ -1231,6 +1271,17 @@ namespace mpm
                                  affine[v]);
             Fields::store(v_grid, q + l.velocity);
             Fields::store(C, q + l.affine_velocity);
+          }
+        else if (newmark)
+          {
+            // The nodes hold v_old + (gamma + 1/2) dt a: the velocity
+            // update is dt a of it.
+            const Tensor<1, dim> v_p = Fields::vector<dim>(q + l.velocity);
+            const Tensor<1, dim> dv  = increment_factor * dv_grid;
+            Fields::store(Tensor<1, dim>(alpha * (v_p + dv) +
+                                         (1. - alpha) *
+                                           (v_grid - dv_grid + dv)),
+                          q + l.velocity);
           }
         else
           {
@@ -1332,6 +1383,8 @@ namespace mpm
       if (!points.bodies()[b].rigid_velocity) // a rigid body has no stress
         points.bodies()[b].material->update_stresses(
           points.handler(), points.layout(), b, dt, comm);
+    if (points.layout().macro_step != FieldLayout::absent)
+      accumulate_macro_increment(dt);
   }
 
 
@@ -1439,6 +1492,12 @@ namespace mpm
     state.values["last_dt"]        = last_dt;
     state.values["steps"]          = n_steps;
     state.values["removed_points"] = n_removed;
+    if (prm.macro_time_step > 0)
+      {
+        state.values["macro_steps"]          = n_macro_steps;
+        state.values["macro_mismatch"]       = macro_mismatch;
+        state.values["macro_kinetic_energy"] = macro_kinetic_energy;
+      }
   }
 
 
@@ -1453,6 +1512,12 @@ namespace mpm
     const bool first = Utilities::MPI::this_mpi_process(comm) == 0;
     work             = first ? state.get("external_work") : 0.;
     absolute_work    = first ? state.get("absolute_work") : 0.;
+    if (prm.macro_time_step > 0)
+      {
+        n_macro_steps        = state.get("macro_steps");
+        macro_mismatch       = state.get("macro_mismatch");
+        macro_kinetic_energy = state.get("macro_kinetic_energy");
+      }
   }
 
 

@@ -223,6 +223,13 @@ namespace mpm
       return local_node_of_cartesian[cartesian_node];
     }
 
+    /// The nodes' partitioner: local node index <-> global DoF index of
+    /// the FE_Q(1) DoFHandler (owned, then ghost nodes).
+    const Utilities::MPI::Partitioner &
+    node_partitioner() const
+    {
+      return *scalar_partitioner;
+    }
     /// Partitioner for @p n_components interleaved values per node.
     std::shared_ptr<const Utilities::MPI::Partitioner>
     make_partitioner(const unsigned int n_components) const;

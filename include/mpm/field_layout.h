@@ -57,7 +57,12 @@ namespace mpm
     unsigned int point_load = absent;
     /// dim per rigid wall with friction: the elastic tangential
     /// displacement of the point's contact with it (stick spring).
-    unsigned int wall_slip    = absent;
+    unsigned int wall_slip = absent;
+    /// dim + dim*dim, substepping only: the other end of the macro step's
+    /// motion (x_p^n during the substeps, x_p^(n+1) while the points sit
+    /// at x_p^n for the reconstruction), then the substeps' deformation
+    /// increment F^(n+1) (F^n)^-1.
+    unsigned int macro_step   = absent;
     unsigned int n_properties = 0;
 
     /// Reserve @p n consecutive slots and return the first.
@@ -88,6 +93,7 @@ namespace mpm
     bool         surface_offset = false;
     bool         point_load     = false;
     unsigned int wall_slips     = 0; ///< walls with friction
+    bool         macro_step     = false;
   };
 
 

@@ -62,6 +62,22 @@ namespace mpm
     bool            f_bar;        ///< volume change averaged over each cell
     double          energy_growth_bound; ///< run-health guard, 0: off
     OutOfGridPolicy out_of_grid;
+    /// Substepping (seed 003): the macro step Dt, 0: off.
+    double macro_time_step;
+    /// Substeps per macro step, 0: as many as the CFL condition needs.
+    unsigned int substeps;
+    /// Macro-step operation: dynamic relaxation at kinetic energy peaks.
+    bool kinetic_damping;
+    /// The reconstruction: seed 003's closed form (APIC), or its
+    /// least-squares system (4) solved with Trilinos.
+    bool least_squares;
+    /// lambda / h^2 of the least-squares system.
+    double least_squares_weight;
+    /// AMG (Trilinos ML) instead of Jacobi for its conjugate gradients.
+    bool least_squares_amg;
+    /// Newmark's gamma of the explicit (beta = 0) member; 1/2: central
+    /// difference, the plain step.
+    double newmark_gamma;
   };
 
 
@@ -106,10 +122,54 @@ namespace mpm
                    VirtualFluid<dim>                   *virtual_fluid = nullptr,
                    MultiFieldContact<dim>              *contact = nullptr);
 
-    /// Advance by one step, of at most @p max_dt. Throws RunError (on all
-    /// ranks) with a diagnosis if the new state is not sound.
+    /// Advance by one step, of at most @p max_dt: an explicit step, or a
+    /// macro step of substeps if the scene sets a macro time step. Throws
+    /// RunError (on all ranks) with a diagnosis if the new state is not
+    /// sound.
     void
     step(const double max_dt);
+
+    /**
+     * Substepping: the grid velocity on the start-of-step configuration
+     * from the points' secant motion over a macro step of length @p Dt
+     * (seed 003, the closed-form APIC reconstruction),
+     *   m_k v_k = sum_p m_p w_kp(x_p^n) (v*_p + C*_p (x_k - x_p^n)),
+     *   Dt v*_p = x_p^(n+1) - x_p^n,   Dt C*_p = F_p^(n+1) (F_p^n)^-1 - I,
+     * then divided by m_k and projected on the boundary conditions.
+     * Expects the points at x_p^n, with x_p^(n+1) and the substeps'
+     * deformation increment in their 'macro step' field (as end_macro_step
+     * leaves them; public for the tests). nodal_velocity() then reads v_k.
+     */
+    void
+    reconstruct_grid_velocity(const double Dt);
+
+    /// Macro steps taken so far (0 without substepping).
+    unsigned int
+    macro_step_number() const
+    {
+      return n_macro_steps;
+    }
+
+    /**
+     * The largest distance, over all points and macro steps so far, between
+     * a point's substepped position and where the reconstructed grid
+     * velocity carries it, |x_p^(n+1) - x_p^n - Dt sum_k w_kp v_k|, in
+     * units of the smallest cell size: how faithfully the macro step's grid
+     * velocity stands for the substeps (seed 003's consistency).
+     */
+    double
+    largest_macro_mismatch() const
+    {
+      return macro_mismatch;
+    }
+
+    /// Least-squares reconstruction: conjugate-gradient iterations of the
+    /// last macro step, summed over the components.
+    unsigned int
+    last_least_squares_iterations() const
+    {
+      return least_squares_iterations;
+    }
 
     double
     time() const
@@ -173,6 +233,55 @@ namespace mpm
     static constexpr unsigned int n_sums    = 1 + 2 * dim;
     static constexpr unsigned int node_mass = 0, v_old = 1, v_new = 1 + dim;
     static constexpr unsigned int n_velocities = 1 + 2 * dim;
+
+    /// One explicit step of @p dt (all that step() does without
+    /// substepping).
+    void
+    explicit_step(const double dt);
+    /// The explicit step's length: the CFL limit, or the fixed time step
+    /// (checked against it).
+    double
+    explicit_time_step();
+    /// S substeps and the macro step's reconstruction and operations.
+    void
+    macro_step(const double Dt);
+    /// Record x_p^n and start each point's deformation increment at I.
+    void
+    begin_macro_step();
+    /// Swap each point's position with the one in its 'macro step' field
+    /// (x^(n+1) <-> x^n) and put the points in their cells again.
+    void
+    swap_macro_positions();
+    /// Multiply each point's deformation increment by this substep's
+    /// I + dt L (after F-bar: the increment the stress update used).
+    void
+    accumulate_macro_increment(const double dt);
+    /// The reconstruction, the operations on v_k and their transfer back
+    /// to the points (see reconstruct_grid_velocity()).
+    void
+    end_macro_step(const double Dt);
+    template <typename Basis>
+    void
+    scatter_macro_targets(const Basis &basis, const double Dt);
+    /// Seed 003's system (4) for v_k, solved from the closed form's v_k.
+    template <typename Basis>
+    void
+    solve_least_squares_reconstruction(const Basis &basis, const double Dt);
+    /**
+     * The hook where operations that need the whole macro step act on the
+     * reconstructed grid velocity v_k (a projection, a coupling with a
+     * large-step solver). Returns true if an operation reset v_k, so that
+     * the points must take their velocities from it.
+     */
+    bool
+    apply_macro_step_operations();
+    /// The points take the grid velocity (after a reset by an operation),
+    /// and the macro step's mismatch is measured.
+    template <typename Basis>
+    void
+    gather_macro_velocity(const Basis &basis,
+                          const double Dt,
+                          const bool   reset);
 
     /// Call @p f with the scene's basis on this grid (the basis class is
     /// chosen at run time, once, and everything in @p f is compiled for it).
@@ -339,6 +448,15 @@ namespace mpm
     std::vector<double>                initial_half_width_of_body;
     std::vector<FunctionParser<dim> *> body_forces; ///< null: none
     bool                               has_body_forces = false;
+
+    /// Substepping: macro steps taken, the largest mismatch (see
+    /// largest_macro_mismatch()), and the grid's kinetic energy at the last
+    /// macro step (kinetic damping).
+    unsigned int n_macro_steps        = 0;
+    double       macro_mismatch       = 0;
+    double       macro_kinetic_energy = 0;
+    /// Least squares: CG iterations of the last macro step (all components).
+    unsigned int least_squares_iterations = 0;
 
     double                min_nodal_mass;
     double                t         = 0;

@@ -1,0 +1,116 @@
+#ifndef mpm_time_integrator_templates_h
+#define mpm_time_integrator_templates_h
+
+// The particle loops of the step, shared by the translation units of the
+// integrator (time_integrator.cc, substepping.cc): templates on the basis,
+// instantiated where they are used, so the loops have no virtual calls.
+#include <mpm/time_integrator.h>
+
+#include <algorithm>
+
+namespace mpm
+{
+  /**
+   * Visit every locally owned point cell by cell with its stencil: the
+   * nodes it touches (as local indices of the nodal vectors), the basis
+   * weights and gradients at its position. Every particle loop of the step
+   * goes through here, so the stencil is evaluated the same way everywhere.
+   */
+  template <int dim>
+  template <typename Basis, typename Kernel>
+  inline void
+  TimeIntegrator<dim>::for_each_point(const Basis &basis, const Kernel &kernel)
+  {
+    typename Basis::Stencil s;
+    Tensor<1, dim>          half_width;
+    // The node lists of the patterns seen so far in the current cell: the
+    // lookup of nodal-vector indices is done once per cell and pattern.
+    std::array<std::array<unsigned int, Basis::n_nodes>, Basis::n_patterns>
+                                     nodes;
+    Particles::ParticleHandler<dim> &particles = points.handler();
+    for (const unsigned int index : grid.locally_owned_cells())
+      {
+        const auto        &cell = grid.cell(index);
+        const unsigned int n    = particles.n_particles_in_cell(cell);
+        if (n == 0)
+          continue;
+        const auto   cell_coordinates = grid.cell_coordinates(index);
+        unsigned int known_patterns   = 0;
+        auto         p = particles.particles_in_cell(cell).begin();
+        for (unsigned int i = 0; i < n; ++i, ++p)
+          {
+            double *q = p->get_properties().data();
+            if constexpr (Basis::needs_half_width)
+              half_width = domain_half_width(q);
+            basis.evaluate(cell_coordinates,
+                           p->get_reference_location(),
+                           half_width,
+                           s);
+            auto &list = nodes[s.pattern];
+            if (!(known_patterns & (1u << s.pattern)))
+              {
+                basis.node_pattern(cell_coordinates, s, list);
+                for (auto &node : list)
+                  {
+                    node = grid.local_node(node);
+                    // Every stencil node must be owned or a ghost here (see
+                    // BackgroundGrid::local_node); Debug builds check it.
+                    Assert(node != BackgroundGrid<dim>::invalid,
+                           ExcMessage("a stencil node is not known on this "
+                                      "rank"));
+                  }
+                known_patterns |= 1u << s.pattern;
+              }
+            s.nodes = list.data();
+            kernel(p, q, s);
+          }
+      }
+  }
+
+
+  template <int dim>
+  inline Tensor<1, dim>
+  TimeIntegrator<dim>::domain_half_width(const double *q) const
+  {
+    const FieldLayout &l  = points.layout();
+    const double       l0 = initial_half_width_of_body[q[l.body]];
+    Tensor<1, dim>     half_width;
+    if (prm.basis == BasisType::cpgimp)
+      {
+        // The axis-aligned box around the deformed domain F [-l0, l0]^dim:
+        // exact for stretches along the axes, and never degenerate under
+        // rotation (the diagonal of F alone would vanish at 90 degrees).
+        // It is capped at half a cell, where the GIMP stencil ends.
+        const Tensor<1, dim> &h = grid.cell_size();
+        const double         *F = q + l.deformation_gradient;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            double extent = 0;
+            for (unsigned int e = 0; e < dim; ++e)
+              extent += std::abs(F[d * dim + e]) * h[e];
+            half_width[d] = std::clamp(l0 * extent / h[d], 1e-6, 0.5);
+          }
+      }
+    else
+      for (unsigned int d = 0; d < dim; ++d)
+        half_width[d] = l0;
+    return half_width;
+  }
+
+
+
+  template <int dim>
+  template <typename F>
+  inline void
+  TimeIntegrator<dim>::with_scene_basis(const F &f) const
+  {
+    with_basis<dim>(prm.basis, [&](auto *tag) {
+      using Basis = std::remove_pointer_t<decltype(tag)>;
+      f(Basis(grid.parameters().n_cells, grid.cell_size()));
+    });
+  }
+
+
+} // namespace mpm
+
+#endif

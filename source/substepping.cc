@@ -1,0 +1,458 @@
+// Substepping the explicit step (seed 003, Jiang): a macro step Dt made of
+// S explicit substeps, after which the grid velocity on the start-of-step
+// configuration is reconstructed from what the points did, so that an
+// operation that needs a large step (a projection, a coupling with another
+// solver, dynamic relaxation) can act once per macro step on a grid
+// velocity that stands for the whole of it.
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <mpm/parameters.h>
+#include <mpm/time_integrator.h>
+#include <mpm/time_integrator.templates.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace mpm
+{
+  /**
+   * The substeps are plain explicit steps: the points' state after them is
+   * the macro step's result (S = 1 is the plain step, to the bit), and the
+   * reconstruction only serves the operations. A substep never exceeds the
+   * CFL limit: with S given, a substep beyond it stops the run; with S = 0
+   * the remaining interval is split into as many equal substeps as the
+   * current limit needs, re-evaluated at every substep.
+   */
+  template <int dim>
+  void
+  TimeIntegrator<dim>::macro_step(const double Dt)
+  {
+    begin_macro_step();
+    const double t_end = t + Dt;
+    for (unsigned int s = 0;; ++s)
+      {
+        const double remaining = t_end - t;
+        const double limit     = stable_time_step();
+        if (prm.substeps > 0)
+          {
+            const bool   last = s + 1 == prm.substeps;
+            const double dt   = last ? remaining : Dt / prm.substeps;
+            if (dt > limit * (1 + 1e-12))
+              {
+                std::ostringstream msg;
+                msg << "macro step " << n_macro_steps << ", t = " << t
+                    << ": the substep Dt / S = " << dt
+                    << " exceeds the stability limit " << limit
+                    << " of the current state; set 'Simulation/substeps' to "
+                       "at least "
+                    << std::ceil(Dt / limit) << ", or to 0 to follow the "
+                    << "CFL condition";
+                throw RunError(msg.str());
+              }
+            explicit_step(dt);
+            if (last)
+              break;
+          }
+        else
+          {
+            const double n_left =
+              std::max(1., std::ceil(remaining / limit * (1 - 1e-12)));
+            explicit_step(remaining / n_left);
+            if (n_left == 1)
+              break;
+          }
+      }
+    t = t_end;
+    end_macro_step(Dt);
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::begin_macro_step()
+  {
+    TimerOutput::Scope scope(timer, "macro step");
+    const FieldLayout &l = points.layout();
+    for (auto &p : points.handler())
+      {
+        double *m = p.get_properties().data() + l.macro_step;
+        Fields::store(Tensor<1, dim>(p.get_location()), m);
+        Fields::store(Tensor<2, dim>(unit_symmetric_tensor<dim>()), m + dim);
+      }
+  }
+
+
+  /**
+   * dF = I + dt L is each substep's increment of F (update_stresses()
+   * calls this after F-bar, so L is the one the stress saw), and the
+   * product of the increments is F^(n+1) (F^n)^-1 exactly, for every point,
+   * whether or not its material stores F.
+   */
+  template <int dim>
+  void
+  TimeIntegrator<dim>::accumulate_macro_increment(const double dt)
+  {
+    TimerOutput::Scope scope(timer, "macro step");
+    const FieldLayout &l = points.layout();
+    for (auto &p : points.handler())
+      {
+        double        *q  = p.get_properties().data();
+        Tensor<2, dim> dF = dt * Fields::tensor<dim>(q + l.velocity_gradient);
+        for (unsigned int d = 0; d < dim; ++d)
+          dF[d][d] += 1.;
+        double *G = q + l.macro_step + dim;
+        Fields::store(Tensor<2, dim>(dF * Fields::tensor<dim>(G)), G);
+      }
+  }
+
+
+  /**
+   * The reconstruction weighs each point at x^n, in the cell (and on the
+   * rank) that held it there, while the points have moved on: they are
+   * put back for it and forward again, through the relocation every step
+   * uses. That costs two relocations per macro step instead of a stencil
+   * that reaches beyond the ghost layer.
+   */
+  template <int dim>
+  void
+  TimeIntegrator<dim>::swap_macro_positions()
+  {
+    {
+      TimerOutput::Scope scope(timer, "macro step");
+      const FieldLayout &l = points.layout();
+      for (auto &p : points.handler())
+        {
+          double          *m     = p.get_properties().data() + l.macro_step;
+          const Point<dim> other = Point<dim>(Fields::vector<dim>(m));
+          Fields::store(Tensor<1, dim>(p.get_location()), m);
+          p.set_location(other);
+        }
+    }
+    TimerOutput::Scope scope(timer, "relocate");
+    n_removed += points.relocate(prm.out_of_grid);
+  }
+
+
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::scatter_macro_targets(const Basis &basis,
+                                             const double Dt)
+  {
+    TimerOutput::Scope scope(timer, "macro step");
+    double            *g = grid_sums.get_values();
+    const unsigned int n_entries =
+      grid_sums.locally_owned_size() +
+      grid_sums.get_partitioner()->n_ghost_indices();
+    for (unsigned int i = 0; i < n_entries; ++i)
+      g[i] = 0;
+    const FieldLayout &l = points.layout();
+    for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
+      const double  m     = q[l.mass];
+      const double *macro = q + l.macro_step;
+      // The secant targets of seed 003's equation (1).
+      const Tensor<1, dim> mv = (m / Dt) * (Fields::vector<dim>(macro) -
+                                            Tensor<1, dim>(p->get_location()));
+      const Tensor<2, dim> mC =
+        (m / Dt) * (Fields::tensor<dim>(macro + dim) -
+                    Tensor<2, dim>(unit_symmetric_tensor<dim>()));
+      const unsigned int field = field_of(q);
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        {
+          double              *node = g + n_sums * slot_of(s.nodes[v], field);
+          const Tensor<1, dim> pk   = mv + mC * s.node_offset(v);
+          node[mass] += s.weights[v] * m;
+          for (unsigned int d = 0; d < dim; ++d)
+            node[momentum + d] += s.weights[v] * pk[d];
+        }
+    });
+    grid_sums.compress(VectorOperation::add);
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::reconstruct_grid_velocity(const double Dt)
+  {
+    with_scene_basis([&](const auto &basis) {
+      scatter_macro_targets(basis, Dt);
+      // Divided by the mass (and the least-squares system solved from
+      // there), then projected on the boundary conditions like any grid
+      // velocity. The projection is no work done on the bodies: the
+      // substeps counted that already.
+      const double work_so_far = step_work;
+      grid_velocities_from_momentum(v_new);
+      if (prm.least_squares)
+        {
+          solve_least_squares_reconstruction(basis, Dt);
+          apply_velocity_constraints(v_new);
+          grid_velocity.update_ghost_values();
+        }
+      step_work = work_so_far;
+    });
+    // v_old keeps the reconstruction as it was, v_new is what the
+    // operations make of it.
+    double            *u = grid_velocity.get_values();
+    const unsigned int n_entries =
+      grid_velocity.locally_owned_size() +
+      grid_velocity.get_partitioner()->n_ghost_indices();
+    for (unsigned int i = 0; i < n_entries; i += n_velocities)
+      for (unsigned int d = 0; d < dim; ++d)
+        u[i + v_old + d] = u[i + v_new + d];
+  }
+
+
+  /**
+   * Seed 003's least-squares fit before its simplifications: v_k minimises
+   *   sum_p m_p |v_p(v) - v*_p|^2 + lambda sum_p m_p |grad v_p(v) - C*_p|^2,
+   * that is, per velocity component, the SPD system
+   *   sum_j [sum_p m_p w_kp w_jp + lambda sum_p m_p grad w_kp . grad w_jp] v_j
+   *     = sum_p m_p w_kp v*_p + lambda sum_p m_p C*_p grad w_kp,
+   * with the consistent mass and the exact gradients (the closed form lumps
+   * the one, drops the stiffness and approximates the other). It is
+   * assembled point by point into a Trilinos matrix over the grid's nodes
+   * (rows of ghost nodes are sent to their owners) and solved by
+   * conjugate gradients from the closed form's v_k, which is close.
+   * Nodes with no mass have no velocity equation: their diagonal gets 1.
+   */
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::solve_least_squares_reconstruction(const Basis &basis,
+                                                          const double Dt)
+  {
+    TimerOutput::Scope                 scope(timer, "macro least squares");
+    const Utilities::MPI::Partitioner &nodes    = grid.node_partitioner();
+    const IndexSet                    &owned    = nodes.locally_owned_range();
+    IndexSet                           relevant = owned;
+    relevant.add_indices(nodes.ghost_indices());
+    const unsigned int n_local = owned.n_elements() + nodes.n_ghost_indices();
+    std::vector<types::global_dof_index> global(n_local);
+    for (unsigned int i = 0; i < n_local; ++i)
+      global[i] = nodes.local_to_global(i);
+
+    const FieldLayout &l      = points.layout();
+    const double       lambda = prm.least_squares_weight *
+                          Utilities::fixed_power<2>(grid.min_cell_size());
+    // The couplings: every pair of nodes of a point's stencil.
+    TrilinosWrappers::SparsityPattern pattern(owned, owned, relevant, comm);
+    std::array<types::global_dof_index, Basis::n_nodes> stencil;
+    for_each_point(basis, [&](auto &, const double *, const auto &s) {
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        stencil[v] = global[s.nodes[v]];
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        pattern.add_entries(stencil[v], stencil.begin(), stencil.end());
+    });
+    const double *u = grid_velocity.get_values();
+    for (unsigned int i = 0; i < owned.n_elements(); ++i)
+      if (!(u[n_velocities * i + node_mass] > 0))
+        pattern.add(global[i], global[i]);
+    pattern.compress();
+
+    TrilinosWrappers::SparseMatrix                 A(pattern);
+    std::array<TrilinosWrappers::MPI::Vector, dim> rhs, solution;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        rhs[d].reinit(owned, relevant, comm, true);
+        solution[d].reinit(owned, comm);
+      }
+    std::array<double, Basis::n_nodes> row;
+    for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
+      const double         m     = q[l.mass];
+      const double        *macro = q + l.macro_step;
+      const Tensor<1, dim> v_star =
+        (Fields::vector<dim>(macro) - Tensor<1, dim>(p->get_location())) / Dt;
+      const Tensor<2, dim> C_star =
+        (Fields::tensor<dim>(macro + dim) -
+         Tensor<2, dim>(unit_symmetric_tensor<dim>())) /
+        Dt;
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        stencil[v] = global[s.nodes[v]];
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        {
+          for (unsigned int w = 0; w < Basis::n_nodes; ++w)
+            row[w] = m * (s.weights[v] * s.weights[w] +
+                          lambda * (s.gradients[v] * s.gradients[w]));
+          A.add(stencil[v], Basis::n_nodes, stencil.data(), row.data());
+          const Tensor<1, dim> b =
+            m * (s.weights[v] * v_star + lambda * (C_star * s.gradients[v]));
+          for (unsigned int d = 0; d < dim; ++d)
+            rhs[d](stencil[v]) += b[d];
+        }
+    });
+    for (unsigned int i = 0; i < owned.n_elements(); ++i)
+      if (!(u[n_velocities * i + node_mass] > 0))
+        A.add(global[i], global[i], 1.);
+    A.compress(VectorOperation::add);
+    for (unsigned int d = 0; d < dim; ++d)
+      rhs[d].compress(VectorOperation::add);
+
+    TrilinosWrappers::PreconditionJacobi jacobi;
+    TrilinosWrappers::PreconditionAMG    amg;
+    if (prm.least_squares_amg)
+      amg.initialize(A);
+    else
+      jacobi.initialize(A);
+    double *v_grid           = grid_velocity.get_values();
+    least_squares_iterations = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        for (unsigned int i = 0; i < owned.n_elements(); ++i)
+          solution[d](global[i]) = v_grid[n_velocities * i + v_new + d];
+        solution[d].compress(VectorOperation::insert);
+        SolverControl control(1000, 1e-12 * rhs[d].l2_norm());
+        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+        try
+          {
+            if (prm.least_squares_amg)
+              cg.solve(A, solution[d], rhs[d], amg);
+            else
+              cg.solve(A, solution[d], rhs[d], jacobi);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            std::ostringstream msg;
+            msg << "macro step " << n_macro_steps
+                << ": the least-squares reconstruction did not converge in "
+                << e.last_step << " conjugate-gradient iterations (residual "
+                << e.last_residual << "); try 'Simulation/least-squares "
+                << "preconditioner = AMG' or 'Simulation/macro "
+                   "reconstruction = APIC'";
+            throw RunError(msg.str());
+          }
+        least_squares_iterations += control.last_step();
+        for (unsigned int i = 0; i < owned.n_elements(); ++i)
+          v_grid[n_velocities * i + v_new + d] = solution[d](global[i]);
+      }
+  }
+
+
+  /**
+   * Kinetic damping (dynamic relaxation; Cundall 1987, Underwood 1983):
+   * a body settling into its static state oscillates about it; where its
+   * kinetic energy peaks it passes the static state, and setting every
+   * velocity to zero there removes the oscillation's energy at once. The
+   * peak is judged once per macro step, on the reconstructed grid
+   * velocity: over one explicit step the kinetic energy is noisy (FLIP,
+   * points crossing cells), over a macro step it is the body's.
+   */
+  template <int dim>
+  bool
+  TimeIntegrator<dim>::apply_macro_step_operations()
+  {
+    bool reset = false;
+    if (prm.kinetic_damping)
+      {
+        const double *u      = grid_velocity.get_values();
+        double        energy = 0;
+        for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes();
+             ++i)
+          energy +=
+            0.5 * u[n_velocities * i + node_mass] *
+            Fields::vector<dim>(u + n_velocities * i + v_new).norm_square();
+        energy = Utilities::MPI::sum(energy, comm);
+        if (energy < macro_kinetic_energy)
+          {
+            double            *w = grid_velocity.get_values();
+            const unsigned int n_entries =
+              grid_velocity.locally_owned_size() +
+              grid_velocity.get_partitioner()->n_ghost_indices();
+            for (unsigned int i = 0; i < n_entries; i += n_velocities)
+              for (unsigned int d = 0; d < dim; ++d)
+                w[i + v_new + d] = 0;
+            reset  = true;
+            energy = 0;
+          }
+        macro_kinetic_energy = energy;
+      }
+    return reset;
+  }
+
+
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::gather_macro_velocity(const Basis &basis,
+                                             const double Dt,
+                                             const bool   reset)
+  {
+    TimerOutput::Scope scope(timer, "macro step");
+    const FieldLayout &l      = points.layout();
+    const double      *u_all  = grid_velocity.get_values();
+    const bool         apic   = l.affine_velocity != FieldLayout::absent;
+    const unsigned int stride = n_fields * n_velocities;
+    std::array<Tensor<1, dim>, Basis::n_nodes> affine;
+    double                                     mismatch = 0;
+    for_each_point(basis, [&](auto &p, double *q, const auto &s) {
+      const double  *u = u_all + n_velocities * field_of(q);
+      Tensor<1, dim> v_reconstructed, v_reset;
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        {
+          const double *node = u + stride * s.nodes[v];
+          v_reconstructed += s.weights[v] * Fields::vector<dim>(node + v_old);
+          v_reset += s.weights[v] * Fields::vector<dim>(node + v_new);
+        }
+      const Tensor<1, dim> secant_motion =
+        Fields::vector<dim>(q + l.macro_step) -
+        Tensor<1, dim>(p->get_location());
+      mismatch =
+        std::max(mismatch, (secant_motion - Dt * v_reconstructed).norm());
+      if (reset)
+        {
+          Fields::store(v_reset, q + l.velocity);
+          if (apic)
+            {
+              basis.affine_weights(s, affine);
+              Tensor<2, dim> C;
+              for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                C += outer_product(Fields::vector<dim>(u + stride * s.nodes[v] +
+                                                       v_new),
+                                   affine[v]);
+              Fields::store(C, q + l.affine_velocity);
+            }
+        }
+    });
+    macro_mismatch =
+      std::max(macro_mismatch,
+               Utilities::MPI::max(mismatch, comm) / grid.min_cell_size());
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::end_macro_step(const double Dt)
+  {
+    swap_macro_positions(); // the points at x^n, x^(n+1) in their field
+    reconstruct_grid_velocity(Dt);
+    const bool reset = apply_macro_step_operations();
+    with_scene_basis(
+      [&](const auto &basis) { gather_macro_velocity(basis, Dt, reset); });
+    swap_macro_positions(); // and back at x^(n+1)
+    ++n_macro_steps;
+  }
+
+
+  template void
+  TimeIntegrator<1>::macro_step(const double);
+  template void
+  TimeIntegrator<2>::macro_step(const double);
+  template void
+  TimeIntegrator<3>::macro_step(const double);
+  template void
+  TimeIntegrator<1>::reconstruct_grid_velocity(const double);
+  template void
+  TimeIntegrator<2>::reconstruct_grid_velocity(const double);
+  template void
+  TimeIntegrator<3>::reconstruct_grid_velocity(const double);
+  template void
+  TimeIntegrator<1>::accumulate_macro_increment(const double);
+  template void
+  TimeIntegrator<2>::accumulate_macro_increment(const double);
+  template void
+  TimeIntegrator<3>::accumulate_macro_increment(const double);
+} // namespace mpm
