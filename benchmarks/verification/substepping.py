@@ -13,6 +13,12 @@ mismatch     How far the reconstructed grid velocity carries each point
              from its substepped position, max |x^(n+1) - x^n - Dt sum w v_k|
              in cells, as Dt grows at a fixed substep dt (S = Dt / dt), and
              the order fitted in Dt.
+reconstruction  The closed form (APIC) against seed 003's least-squares
+             system (Jacobi and AMG) on the 2D MMS (quadratic B-spline,
+             A = 0.05, macro step 0.002 s, about 6x and 13x the explicit
+             limit at 16 and 32 cells): the mismatch, and the cost of the
+             macro step's own work (reconstruction, operations, the two
+             relocations) per point and macro step beside a substep's.
 
 One CSV row per run on stdout.
 
@@ -59,6 +65,41 @@ def macro(Dt, S):
             "Simulation/substeps=%d" % S]
 
 
+RECONSTRUCTIONS = {
+    "APIC": ["Simulation/macro reconstruction=APIC"],
+    "least squares, Jacobi": ["Simulation/macro reconstruction=least squares"],
+    "least squares, AMG": ["Simulation/macro reconstruction=least squares",
+                           "Simulation/least-squares preconditioner=AMG"],
+}
+
+
+def reconstruction_study(exe, cells, extra):
+    print("# reconstruction,cells,mode,mismatch_cells,macro_ns_per_point_and_macro_step,"
+          "substep_ns_per_particle_step,macro_steps")
+    for n in cells:
+        for name, settings in RECONSTRUCTIONS.items():
+            s = ["Grid/cells=%d" % n, "Simulation/basis=quadratic B-spline",
+                 "Simulation/constants=A=0.05, c=100, rho=1, mu=3846.153846153846, "
+                 "lambda=5769.230769230769, px=0, py=0, pz=0",
+                 "Simulation/macro time step=0.002"] + settings
+            r = run_scene(exe, "verification/mms_2d.prm",
+                          sum([["-s", x] for x in s], []) + extra)
+            t = r.timing
+            points = float(t["particles"]["seconds"])
+            steps = float(t["time steps"]["seconds"])
+            macro_steps = float(r.rows[-1]["macro_steps"])
+            own = sum(float(t[k]["seconds"]) for k in ("macro step", "macro least squares")
+                      if k in t)
+            # The macro step's two relocations: relocation's calls beyond one per substep.
+            per_relocation = float(t["relocate"]["seconds"]) / (steps + 2 * macro_steps)
+            own += 2 * macro_steps * per_relocation
+            substep = (float(t["steps"]["seconds"]) - own) / (points * steps)
+            print("# reconstruction,%d,%s,%.3e,%.0f,%.0f,%d" % (
+                n, name, float(r.rows[-1]["macro_mismatch"]),
+                1e9 * own / (points * macro_steps), 1e9 * substep, macro_steps),
+                flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(
         description=__doc__,
@@ -69,11 +110,16 @@ def main():
                         help="substep counts S0, 2 S0, ... at the macro step")
     parser.add_argument("--mismatch-ratios", default="2,4,8,16,32",
                         help="Dt / dt for the mismatch ladder (dt: the limit)")
+    parser.add_argument("--reconstruction-cells", default="16,32",
+                        help="grids of the reconstruction study ('' skips it)")
     parser.add_argument("--check", action="store_true")
     a = parser.parse_args()
     extra = overrides(a)
     print("study,problem,mode,Dt,S,dt,error,wall_seconds,macro_mismatch_cells")
     failures = []
+    if a.reconstruction_cells:
+        reconstruction_study(a.exe, [int(n) for n in a.reconstruction_cells.split(",")],
+                             extra)
     for problem in a.problems.split(","):
         _, _, limit, Dt = PROBLEMS[problem]
         errors = []
