@@ -732,3 +732,11 @@ mpm_test(bad_least_squares_with_contact PRM ../benchmarks/contact/rolling_disk.p
 mpm_test(bad_least_squares_weight PRM block_settling.prm EXIT 1
   ARGS -s "Simulation/macro time step=0.05" -s "Simulation/least-squares weight=-1"
   ERROR "parameter 'Simulation/least-squares weight' = '-1': allowed range is .0, 100.")
+#     Substepping with kinetic damping restarts bit for bit: the macro
+#     step's counters and the last peak's kinetic energy are in the
+#     checkpoint (checkpoints fall on output times, which end macro steps).
+add_test(NAME checkpoint_restart_kinetic_damping
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
+    --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/block_settling.prm
+    --end-time 0.5 -s "Simulation/damping=0" -s "Simulation/macro time step=0.005"
+    -s "Simulation/kinetic damping=true" -s "Output/interval=0.05")

@@ -159,9 +159,19 @@ BASES = {  # short name: value of Simulation/basis
     "linear": "linear", "uGIMP": "uGIMP", "cpGIMP": "cpGIMP",
     "QBS": "quadratic B-spline", "CBS": "cubic B-spline"}
 SCHEMES = {"USL", "USF", "MUSL"}
-TRANSFERS = {"FLIP": ["Simulation/transfer=FLIP", "Simulation/FLIP fraction=1"],
+FLIP = ["Simulation/transfer=FLIP", "Simulation/FLIP fraction=1"]
+# A transfer name may carry a time integration after '~' (issue 11):
+# N0.6 is Newmark's gamma = 0.6; macro / macroLS run macro steps that span
+# each output interval (substeps from the CFL condition, so the scenes
+# with a fixed time step take the CFL step instead), reconstructed in
+# closed form / by least squares.
+MACRO = ["Simulation/time step=0", "Simulation/macro time step=1e300"]
+TRANSFERS = {"FLIP": FLIP,
              "PIC": ["Simulation/transfer=FLIP", "Simulation/FLIP fraction=0"],
-             "APIC": ["Simulation/transfer=APIC"]}
+             "APIC": ["Simulation/transfer=APIC"],
+             "FLIP~N0.6": FLIP + ["Simulation/Newmark gamma=0.6"],
+             "FLIP~macro": FLIP + MACRO,
+             "FLIP~macroLS": FLIP + MACRO + ["Simulation/macro reconstruction=least squares"]}
 
 # The configurations of the full sweep, "basis:scheme-transfer". Any other
 # combination can be named with --configs.
