@@ -1036,12 +1036,18 @@ namespace mpm
             if (alpha > 0)
               f -= alpha * std::abs(f) *
                    ((vel[v_old + d] > 0) - (vel[v_old + d] < 0));
-            const double v = (vel[v_old + d] + dt_m * f) * damping_factor;
-            vel[v_new + d] =
-              newmark ? vel[v_old + d] + motion_factor * (v - vel[v_old + d])
-                      : v;
+            vel[v_new + d] = (vel[v_old + d] + dt_m * f) * damping_factor;
           }
       }
+    // A loop of its own, so that the plain step's stays as it was.
+    if (newmark)
+      for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
+        {
+          double *vel = u + n_velocities * i;
+          for (unsigned int d = 0; d < dim; ++d)
+            vel[v_new + d] = vel[v_old + d] +
+                             motion_factor * (vel[v_new + d] - vel[v_old + d]);
+        }
     apply_velocity_constraints(v_new, dt);
     grid_velocity.update_ghost_values();
     if (virtual_fluid)
