@@ -268,7 +268,9 @@ def plots(rows, outdir):
         fig, (a, b) = plt.subplots(1, 2, figsize=(13, 5.5))
         colours = dict(zip(BASES, ["C0", "C1", "C2", "C3", "C4"]))
         styles = {"USL-FLIP": "o-", "USL-PIC": "v:", "USF-FLIP": "s--", "MUSL-FLIP": "^-",
-                  "MUSL-PIC": "<:", "MUSL-APIC": "D-.", "USL-APIC": "d-."}
+                  "MUSL-PIC": "<:", "MUSL-APIC": "D-.", "USL-APIC": "d-.",
+                  "USL-FLIP~N0.6": "P--", "USL-FLIP~macro": "*-.",
+                  "USL-FLIP~macroLS": "X:"}
         for config in configs_in(sel):
             rs = sorted([r for r in sel if config_name(r) == config
                          and r["status"] == "ok" and math.isfinite(r["error"])],
@@ -303,7 +305,11 @@ def report(rows, images, path):
              "program against the exact solution of each scene; wall seconds count the",
              "time steps only. Configurations are named basis:scheme-transfer, with the",
              "bases linear, uGIMP, cpGIMP, QBS (quadratic B-spline) and CBS (cubic",
-             "B-spline), and the transfers FLIP (alpha = 1), PIC (alpha = 0) and APIC.", "",
+             "B-spline), and the transfers FLIP (alpha = 1), PIC (alpha = 0) and APIC;",
+             "a transfer may carry a time integration after '~': N0.6 (Newmark's",
+             "gamma = 0.6), macro and macroLS (macro steps of an output interval,",
+             "substeps from the CFL condition, closed-form or least-squares",
+             "reconstruction).", "",
              "## Observed orders (least-squares slope of log error against log h)", "",
              ]
     problems = [p for p in PROBLEMS if any(r["problem"] == p for r in rows)]
