@@ -37,20 +37,27 @@ def _tuples(kind, text, n_components):
 
 
 def read_vtu_points(path):
+    """Every <Piece> of the file: a run on several ranks writes one piece
+    per rank into the same .vtu."""
     xml = open(path).read()
-    m = re.search(r"<Points>\s*<DataArray[^>]*type=\"(Float32|Float64)\"[^>]*>"
-                  r"(.*?)</DataArray>", xml, re.S)
-    return _tuples(m.group(1), m.group(2), 3)
+    points = []
+    for m in re.finditer(r"<Points>\s*<DataArray[^>]*type=\"(Float32|Float64)\"[^>]*>"
+                         r"(.*?)</DataArray>", xml, re.S):
+        points += _tuples(m.group(1), m.group(2), 3)
+    return points
 
 
 def read_vtu_field(path, name):
     xml = open(path).read()
-    m = re.search(r"<DataArray type=\"(Float32|Float64)\" Name=\"%s\""
-                  r"(?: NumberOfComponents=\"(\d+)\")?[^>]*>(.*?)</DataArray>"
-                  % re.escape(name), xml, re.S)
-    if m is None:
+    values, found = [], False
+    for m in re.finditer(r"<DataArray type=\"(Float32|Float64)\" Name=\"%s\""
+                         r"(?: NumberOfComponents=\"(\d+)\")?[^>]*>(.*?)</DataArray>"
+                         % re.escape(name), xml, re.S):
+        values += _tuples(m.group(1), m.group(3), int(m.group(2) or 1))
+        found = True
+    if not found:
         raise KeyError("no field '%s' in %s" % (name, path))
-    return _tuples(m.group(1), m.group(3), int(m.group(2) or 1))
+    return values
 
 
 def _pieces(pvtu):

@@ -42,6 +42,15 @@ namespace mpm
       "likewise). 'displacement' makes every point store its initial "
       "position; the last two are computed at output only.");
     prm.declare_entry(
+      "particle format",
+      "VTU",
+      Patterns::Selection("VTU|HDF5"),
+      "VTU (particles_NNNNN.vtu per output time, particles.pvd) or HDF5 "
+      "(particles_NNNNN.h5 and its particles_NNNNN.xdmf per output time, "
+      "particles.xdmf for all of them; open the .xdmf in ParaView with the "
+      "XDMF reader). Either is one file per output time written by all "
+      "ranks at once.");
+    prm.declare_entry(
       "grid output",
       "false",
       Patterns::Bool(),
@@ -81,6 +90,7 @@ namespace mpm
     interval     = Parse::bounded_double(prm, "Output", "interval", 0, 1e300);
     fields       = Utilities::split_string_list(prm.get("fields"), ',');
     grid_output  = prm.get_bool("grid output");
+    hdf5         = prm.get("particle format") == "HDF5";
     body_extents = prm.get_bool("body extents");
     replace_existing = prm.get("existing output") == "replace";
     progress_interval =
@@ -246,7 +256,8 @@ namespace mpm
       const std::string name = file.filename().string();
       const auto        ext  = file.extension();
       for (const std::string base : {"particles_", "grid_"})
-        if (name.rfind(base, 0) == 0 && (ext == ".vtu" || ext == ".pvtu"))
+        if (name.rfind(base, 0) == 0 &&
+            (ext == ".vtu" || ext == ".pvtu" || ext == ".h5" || ext == ".xdmf"))
           return std::atoi(name.c_str() + base.size());
       return -1;
     }
@@ -258,8 +269,8 @@ namespace mpm
     {
       const std::string name = file.filename().string();
       return frame_number(file) >= 0 || name == "particles.pvd" ||
-             name == "grid.pvd" || name == "statistics.csv" ||
-             name == "timing.csv";
+             name == "particles.xdmf" || name == "grid.pvd" ||
+             name == "statistics.csv" || name == "timing.csv";
     }
 
     /// Create @p directory and an empty partial directory in it.
@@ -365,6 +376,34 @@ namespace mpm
       }
       std::filesystem::rename(file + ".tmp", file);
     }
+
+    /**
+     * The XDMF collection of all output times, atomically like the PVD
+     * record: each frame's own .xdmf (which deal.II writes for its .h5)
+     * is included by XInclude, so the collection needs nothing but the
+     * names and can be written again after a restart.
+     */
+    void
+    write_xdmf_collection(
+      const std::string                                 &file,
+      const std::vector<std::pair<double, std::string>> &entries)
+    {
+      {
+        std::ofstream out(file + ".tmp");
+        out << "<?xml version=\"1.0\" ?>\n"
+            << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+            << "<Xdmf Version=\"2.0\" "
+               "xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
+            << "  <Domain>\n"
+            << "    <Grid Name=\"particles\" GridType=\"Collection\" "
+               "CollectionType=\"Temporal\">\n";
+        for (const auto &[time, name] : entries)
+          out << "      <xi:include href=\"" << name
+              << "\" xpointer=\"xpointer(//Xdmf/Domain/Grid/Grid)\"/>\n";
+        out << "    </Grid>\n  </Domain>\n</Xdmf>\n";
+      }
+      std::filesystem::rename(file + ".tmp", file);
+    }
   } // namespace
 
 
@@ -416,7 +455,11 @@ namespace mpm
       {
         // The records as of the checkpoint: frames written after it are
         // gone.
-        write_pvd(prm.directory + "/particles.pvd", particle_files);
+        if (prm.hdf5)
+          write_xdmf_collection(prm.directory + "/particles.xdmf",
+                                particle_files);
+        else
+          write_pvd(prm.directory + "/particles.pvd", particle_files);
         if (!grid_files.empty())
           write_pvd(prm.directory + "/grid.pvd", grid_files);
       }
@@ -499,7 +542,20 @@ namespace mpm
       out.add_field("velocity", dim, vector);
     if (displacement)
       out.add_field("displacement", dim, vector);
-    if (stress)
+    // deal.II's HDF5 filter writes a field of more than 3 components as a
+    // vector of 3 (measured: the 2D stress tensor came out as 3 columns),
+    // so in HDF5 the stress goes as its independent components.
+    const std::vector<std::pair<unsigned int, unsigned int>> stress_components =
+      dim == 1   ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0}}
+      : dim == 2 ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0},
+                                                                      {1, 1},
+                                                                      {0, 1}}
+                 : std::vector<std::pair<unsigned int, unsigned int>>{
+                     {0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+    if (stress && prm.hdf5)
+      for (const auto &[i, j] : stress_components)
+        out.add_field(std::string("stress_") + "xyz"[i] + "xyz"[j], 1, scalar);
+    else if (stress)
       out.add_field("stress", dim * dim, tensor);
     if (J)
       out.add_field("J", 1, scalar);
@@ -534,7 +590,13 @@ namespace mpm
         if (displacement)
           for (unsigned int d = 0; d < dim; ++d)
             put(p.get_location()[d] - q[l.initial_position + d]);
-        if (stress)
+        if (stress && prm.hdf5)
+          {
+            const auto s = Fields::symmetric<dim>(q + l.stress);
+            for (const auto &[i, j] : stress_components)
+              put(s[i][j]);
+          }
+        else if (stress)
           {
             const auto s = Fields::symmetric<dim>(q + l.stress);
             for (unsigned int i = 0; i < dim; ++i)
@@ -569,7 +631,10 @@ namespace mpm
         out.patches.push_back(std::move(patch));
       }
 
-    write_files(out, "particles", particle_files);
+    if (prm.hdf5)
+      write_hdf5_files(out, "particles", particle_files);
+    else
+      write_files(out, "particles", particle_files);
   }
 
 
@@ -625,18 +690,58 @@ namespace mpm
     // returns; the .pvtu is the root's.
     if (is_root)
       {
-        // The .vtu files first, then the .pvtu that names them.
-        for (const auto &entry :
-             std::filesystem::directory_iterator(partial_directory))
-          if (entry.path().filename() != name)
-            std::filesystem::rename(entry.path(),
-                                    prm.directory + "/" +
-                                      entry.path().filename().string());
-        std::filesystem::rename(partial_directory + name,
-                                prm.directory + "/" + name);
+        publish_frame(name);
         records.emplace_back(integrator.time(), name);
         write_pvd(prm.directory + "/" + base + ".pvd", records);
       }
+  }
+
+
+  template <int dim>
+  void
+  Output<dim>::write_hdf5_files(
+    DataOutInterface<0, dim>                    &out,
+    const std::string                           &base,
+    std::vector<std::pair<double, std::string>> &records)
+  {
+    // Points are not merged (no duplicate vertices to filter); the data
+    // are written with every component of a vector or tensor together.
+    DataOutBase::DataOutFilter filter(
+      DataOutBase::DataOutFilterFlags(false, true));
+    out.write_filtered_data(filter);
+    const std::string frame = base + "_" + Utilities::int_to_string(counter, 5);
+    const std::string partial_directory = prm.directory + "/" + partial + "/";
+    out.write_hdf5_parallel(filter, partial_directory + frame + ".h5", comm);
+    // The frame's .xdmf names its .h5 relative to itself.
+    const std::vector<XDMFEntry> entry = {
+      out.create_xdmf_entry(filter, frame + ".h5", integrator.time(), comm)};
+    out.write_xdmf_file(entry, partial_directory + frame + ".xdmf", comm);
+    if (is_root)
+      {
+        publish_frame(frame + ".xdmf");
+        records.emplace_back(integrator.time(), frame + ".xdmf");
+        write_xdmf_collection(prm.directory + "/" + base + ".xdmf", records);
+      }
+  }
+
+
+  /**
+   * The data files of a frame go first and the file that names them last,
+   * so that a run killed at any moment leaves only complete frames.
+   */
+  template <int dim>
+  void
+  Output<dim>::publish_frame(const std::string &name) const
+  {
+    const std::string partial_directory = prm.directory + "/" + partial + "/";
+    for (const auto &entry :
+         std::filesystem::directory_iterator(partial_directory))
+      if (entry.path().filename() != name)
+        std::filesystem::rename(entry.path(),
+                                prm.directory + "/" +
+                                  entry.path().filename().string());
+    std::filesystem::rename(partial_directory + name,
+                            prm.directory + "/" + name);
   }
 
 

@@ -91,6 +91,11 @@ namespace mpm
     output_parameters.parse_parameters(prm);
     checkpoint_parameters.parse_parameters(prm, output_parameters.directory);
     verification_parameters.parse_parameters(prm);
+    if (dim == 1 && output_parameters.hdf5)
+      throw InputError("Output/particle format",
+                       "HDF5",
+                       "needs dimension 2 or 3 (deal.II writes HDF5 for 2D and "
+                       "3D data only); use VTU");
     if (dim == 1 && (checkpoint_parameters.enabled() || !restart.empty()))
       throw InputError("Checkpoint/interval",
                        "(or --restart)",

@@ -744,3 +744,30 @@ add_test(NAME checkpoint_restart_kinetic_damping
     --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/block_settling.prm
     --end-time 0.5 -s "Simulation/damping=0" -s "Simulation/macro time step=0.005"
     -s "Simulation/kinetic damping=true" -s "Output/interval=0.05")
+
+# 18. Parallel particle output (issue 13): HDF5 + XDMF holds what VTU holds,
+#     frame by frame, on 1 and 2 ranks (positions to VTU's single
+#     precision, fields exactly); 1D has no HDF5 output in deal.II.
+#     The check reads HDF5 with h5py (Debian's python3-h5py, which
+#     scripts/setup installs): a Python that has it, if the first one found
+#     (a pyenv's, say) has not.
+execute_process(COMMAND ${Python3_EXECUTABLE} -c "import h5py"
+  RESULT_VARIABLE python_lacks_h5py OUTPUT_QUIET ERROR_QUIET)
+set(h5py_python ${Python3_EXECUTABLE})
+if(python_lacks_h5py)
+  find_program(SYSTEM_PYTHON3 NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+  set(h5py_python ${SYSTEM_PYTHON3})
+endif()
+add_test(NAME hdf5_output
+  COMMAND ${h5py_python} ${CMAKE_CURRENT_SOURCE_DIR}/hdf5_output.py
+    --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/two_disks.prm
+    -s "Simulation/end time=0.6" -s "Output/interval=0.1")
+add_test(NAME hdf5_output_mpi2
+  COMMAND ${h5py_python} ${CMAKE_CURRENT_SOURCE_DIR}/hdf5_output.py
+    --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/two_disks.prm --np 2
+    -s "Simulation/end time=0.6" -s "Output/interval=0.1")
+set_tests_properties(hdf5_output_mpi2 PROPERTIES PROCESSORS 2
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+mpm_test(bad_hdf5_in_1d PRM vibrating_bar.prm EXIT 1
+  ARGS -s "Output/particle format=HDF5"
+  ERROR "parameter 'Output/particle format' = 'HDF5': needs dimension 2 or 3")

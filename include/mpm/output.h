@@ -32,6 +32,9 @@ namespace mpm
     double                   interval; ///< simulated time; 0 = every step
     std::vector<std::string> fields;
     bool                     grid_output;
+    /// Particles as HDF5 + XDMF (one .h5 per output time, written by all
+    /// ranks through MPI-IO) instead of VTU.
+    bool hdf5;
     /// Columns with the box around each body's points (runout, length).
     bool   body_extents;
     double progress_interval; ///< wall seconds
@@ -119,6 +122,16 @@ namespace mpm
     write_files(DataOutInterface<patch_dim, dim>            &out,
                 const std::string                           &base,
                 std::vector<std::pair<double, std::string>> &records);
+    /// The HDF5 file of @p out at this time with its XDMF description, and
+    /// the XDMF collection @p base.xdmf of all times.
+    void
+    write_hdf5_files(DataOutInterface<0, dim>                    &out,
+                     const std::string                           &base,
+                     std::vector<std::pair<double, std::string>> &records);
+    /// Move the files of @p name (the partial directory's, @p name last)
+    /// into the output directory (root only).
+    void
+    publish_frame(const std::string &name) const;
 
     const OutputParameters                      prm;
     const BackgroundGrid<dim>                  &grid;
