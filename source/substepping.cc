@@ -145,10 +145,8 @@ namespace mpm
                                              const double Dt)
   {
     TimerOutput::Scope scope(timer, "macro step");
-    double            *g = grid_sums.get_values();
-    const unsigned int n_entries =
-      grid_sums.locally_owned_size() +
-      grid_sums.get_partitioner()->n_ghost_indices();
+    double            *g         = grid_sums.get_values();
+    const unsigned int n_entries = n_local_entries(grid_sums);
     for (unsigned int i = 0; i < n_entries; ++i)
       g[i] = 0;
     const FieldLayout &l = points.layout();
@@ -197,10 +195,8 @@ namespace mpm
     });
     // v_old keeps the reconstruction as it was, v_new is what the
     // operations make of it.
-    double            *u = grid_velocity.get_values();
-    const unsigned int n_entries =
-      grid_velocity.locally_owned_size() +
-      grid_velocity.get_partitioner()->n_ghost_indices();
+    double            *u         = grid_velocity.get_values();
+    const unsigned int n_entries = n_local_entries(grid_velocity);
     for (unsigned int i = 0; i < n_entries; i += n_velocities)
       for (unsigned int d = 0; d < dim; ++d)
         u[i + v_old + d] = u[i + v_new + d];
@@ -358,10 +354,8 @@ namespace mpm
         energy = Utilities::MPI::sum(energy, comm);
         if (energy < macro_kinetic_energy)
           {
-            double            *w = grid_velocity.get_values();
-            const unsigned int n_entries =
-              grid_velocity.locally_owned_size() +
-              grid_velocity.get_partitioner()->n_ghost_indices();
+            double            *w         = grid_velocity.get_values();
+            const unsigned int n_entries = n_local_entries(grid_velocity);
             for (unsigned int i = 0; i < n_entries; i += n_velocities)
               for (unsigned int d = 0; d < dim; ++d)
                 w[i + v_new + d] = 0;

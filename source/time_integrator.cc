@@ -612,10 +612,8 @@ namespace mpm
                                        const bool   forces)
   {
     TimerOutput::Scope scope(timer, "P2G");
-    double            *g = grid_sums.get_values();
-    const unsigned int n_entries =
-      grid_sums.locally_owned_size() +
-      grid_sums.get_partitioner()->n_ghost_indices();
+    double            *g         = grid_sums.get_values();
+    const unsigned int n_entries = n_local_entries(grid_sums);
     for (unsigned int i = 0; i < n_entries; i += n_sums)
       {
         if (mass_and_momentum)

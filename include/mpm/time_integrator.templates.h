@@ -10,6 +10,14 @@
 
 namespace mpm
 {
+  /// The length of the local array of a nodal vector: owned and ghost
+  /// entries (loops that clear or copy all of them).
+  inline unsigned int
+  n_local_entries(const LinearAlgebra::distributed::Vector<double> &v)
+  {
+    return v.locally_owned_size() + v.get_partitioner()->n_ghost_indices();
+  }
+
   /**
    * Visit every locally owned point cell by cell with its stencil: the
    * nodes it touches (as local indices of the nodal vectors), the basis
