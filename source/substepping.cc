@@ -20,6 +20,30 @@
 
 namespace mpm
 {
+  namespace
+  {
+    /**
+     * Seed 003's secant targets (its equation (1)) of a point at x^n whose
+     * 'macro step' field @p macro holds x^(n+1) and F^(n+1) (F^n)^-1:
+     * Dt v* = x^(n+1) - x^n and Dt C* = F^(n+1) (F^n)^-1 - I.
+     */
+    template <int dim>
+    struct SecantTargets
+    {
+      SecantTargets(const Point<dim> &x, const double *macro, const double Dt)
+        : velocity((Fields::vector<dim>(macro) - Tensor<1, dim>(x)) / Dt)
+        , gradient((Fields::tensor<dim>(macro + dim) -
+                    Tensor<2, dim>(unit_symmetric_tensor<dim>())) /
+                   Dt)
+      {
+      }
+
+      Tensor<1, dim> velocity;
+      Tensor<2, dim> gradient;
+    };
+  } // namespace
+
+
   /**
    * The substeps are plain explicit steps: the points' state after them is
    * the macro step's result (S = 1 is the plain step, to the bit), and the
@@ -151,15 +175,11 @@ namespace mpm
       g[i] = 0;
     const FieldLayout &l = points.layout();
     for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
-      const double  m     = q[l.mass];
-      const double *macro = q + l.macro_step;
-      // The secant targets of seed 003's equation (1).
-      const Tensor<1, dim> mv = (m / Dt) * (Fields::vector<dim>(macro) -
-                                            Tensor<1, dim>(p->get_location()));
-      const Tensor<2, dim> mC =
-        (m / Dt) * (Fields::tensor<dim>(macro + dim) -
-                    Tensor<2, dim>(unit_symmetric_tensor<dim>()));
-      const unsigned int field = field_of(q);
+      const double             m = q[l.mass];
+      const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
+      const Tensor<1, dim>     mv    = m * target.velocity;
+      const Tensor<2, dim>     mC    = m * target.gradient;
+      const unsigned int       field = field_of(q);
       for (unsigned int v = 0; v < Basis::n_nodes; ++v)
         {
           double              *node = g + n_sums * slot_of(s.nodes[v], field);
@@ -244,10 +264,13 @@ namespace mpm
       for (unsigned int v = 0; v < Basis::n_nodes; ++v)
         pattern.add_entries(stencil[v], stencil.begin(), stencil.end());
     });
-    const double *u = grid_velocity.get_values();
+    const double             *u = grid_velocity.get_values();
+    std::vector<unsigned int> massless;
     for (unsigned int i = 0; i < owned.n_elements(); ++i)
       if (!(u[n_velocities * i + node_mass] > 0))
-        pattern.add(global[i], global[i]);
+        massless.push_back(i);
+    for (const unsigned int i : massless)
+      pattern.add(global[i], global[i]);
     pattern.compress();
 
     TrilinosWrappers::SparseMatrix                 A(pattern);
@@ -259,14 +282,8 @@ namespace mpm
       }
     std::array<double, Basis::n_nodes> row;
     for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
-      const double         m     = q[l.mass];
-      const double        *macro = q + l.macro_step;
-      const Tensor<1, dim> v_star =
-        (Fields::vector<dim>(macro) - Tensor<1, dim>(p->get_location())) / Dt;
-      const Tensor<2, dim> C_star =
-        (Fields::tensor<dim>(macro + dim) -
-         Tensor<2, dim>(unit_symmetric_tensor<dim>())) /
-        Dt;
+      const double             m = q[l.mass];
+      const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
       for (unsigned int v = 0; v < Basis::n_nodes; ++v)
         stencil[v] = global[s.nodes[v]];
       for (unsigned int v = 0; v < Basis::n_nodes; ++v)
@@ -276,14 +293,14 @@ namespace mpm
                           lambda * (s.gradients[v] * s.gradients[w]));
           A.add(stencil[v], Basis::n_nodes, stencil.data(), row.data());
           const Tensor<1, dim> b =
-            m * (s.weights[v] * v_star + lambda * (C_star * s.gradients[v]));
+            m * (s.weights[v] * target.velocity +
+                 lambda * (target.gradient * s.gradients[v]));
           for (unsigned int d = 0; d < dim; ++d)
             rhs[d](stencil[v]) += b[d];
         }
     });
-    for (unsigned int i = 0; i < owned.n_elements(); ++i)
-      if (!(u[n_velocities * i + node_mass] > 0))
-        A.add(global[i], global[i], 1.);
+    for (const unsigned int i : massless)
+      A.add(global[i], global[i], 1.);
     A.compress(VectorOperation::add);
     for (unsigned int d = 0; d < dim; ++d)
       rhs[d].compress(VectorOperation::add);
@@ -391,24 +408,16 @@ namespace mpm
           v_reconstructed += s.weights[v] * Fields::vector<dim>(node + v_old);
           v_reset += s.weights[v] * Fields::vector<dim>(node + v_new);
         }
-      const Tensor<1, dim> secant_motion =
-        Fields::vector<dim>(q + l.macro_step) -
-        Tensor<1, dim>(p->get_location());
+      const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
       mismatch =
-        std::max(mismatch, (secant_motion - Dt * v_reconstructed).norm());
+        std::max(mismatch, Dt * (target.velocity - v_reconstructed).norm());
       if (reset)
         {
           Fields::store(v_reset, q + l.velocity);
           if (apic)
-            {
-              basis.affine_weights(s, affine);
-              Tensor<2, dim> C;
-              for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-                C += outer_product(Fields::vector<dim>(u + stride * s.nodes[v] +
-                                                       v_new),
-                                   affine[v]);
-              Fields::store(C, q + l.affine_velocity);
-            }
+            Fields::store(
+              apic_velocity_gradient<dim>(basis, s, u, stride, v_new, affine),
+              q + l.affine_velocity);
         }
     });
     macro_mismatch =

@@ -1267,14 +1267,10 @@ namespace mpm
         if constexpr (decltype(apic)::value)
           {
             // v_p is the grid velocity at the point; C_p = B_p D_p^{-1}.
-            basis.affine_weights(s, affine);
-            Tensor<2, dim> C;
-            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-              C += outer_product(Fields::vector<dim>(u + stride * s.nodes[v] +
-                                                     v_new),
-                                 affine[v]);
             Fields::store(v_grid, q + l.velocity);
-            Fields::store(C, q + l.affine_velocity);
+            Fields::store(
+              apic_velocity_gradient<dim>(basis, s, u, stride, v_new, affine),
+              q + l.affine_velocity);
           }
         else if (newmark)
           {

@@ -10,6 +10,30 @@
 
 namespace mpm
 {
+  /**
+   * APIC's C_p = sum_I v_I (x) a_I (Jiang et al. 2015) from the nodal
+   * velocities at @p slot of the interleaved array @p u (node stride
+   * @p stride); @p affine is scratch for the basis' affine weights a_I.
+   * The gather and the macro step's reset form C_p here.
+   */
+  template <int dim, typename Basis>
+  inline DEAL_II_ALWAYS_INLINE Tensor<2, dim>
+  apic_velocity_gradient(const Basis                                &basis,
+                         const typename Basis::Stencil              &s,
+                         const double                               *u,
+                         const unsigned int                          stride,
+                         const unsigned int                          slot,
+                         std::array<Tensor<1, dim>, Basis::n_nodes> &affine)
+  {
+    basis.affine_weights(s, affine);
+    Tensor<2, dim> C;
+    for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+      C += outer_product(Fields::vector<dim>(u + stride * s.nodes[v] + slot),
+                         affine[v]);
+    return C;
+  }
+
+
   /// The length of the local array of a nodal vector: owned and ghost
   /// entries (loops that clear or copy all of them).
   inline unsigned int
