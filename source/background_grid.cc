@@ -2,7 +2,11 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <deal.II/base/quadrature_lib.h>
+
 #include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_tools.h>
 
 #include <deal.II/grid/grid_generator.h>
 
@@ -84,6 +88,16 @@ namespace mpm
                       Patterns::Anything(),
                       "Coulomb coefficient mu >= 0 of the faces of type "
                       "friction (tan of the basal friction angle).");
+    prm.declare_entry("cells per tile",
+                      "auto",
+                      Patterns::Anything(),
+                      "Grid cells per edge of a tile, the unit deal.II "
+                      "stores, partitions and balances (T^dim cells): 1, 2, "
+                      "4 or 8, dividing 'cells' in every direction, or auto "
+                      "(the largest of 4, 2, 1 that does). Larger tiles "
+                      "need less memory per cell (a tile costs about as "
+                      "much as 16 material points) and coarser load "
+                      "balancing; the answer does not depend on it.");
     prm.declare_entry("absorbing body",
                       "0",
                       Patterns::Anything(),
@@ -113,18 +127,48 @@ namespace mpm
     Tensor<1, dim> inverse_cell_size;
     for (unsigned int d = 0; d < dim; ++d)
       inverse_cell_size[d] = 1. / cell_size()[d];
+    std::array<unsigned int, dim> cell;
     return locate_in_lattice<dim>(
-      x, lower_corner, inverse_cell_size, n_cells, reference);
+             x, lower_corner, inverse_cell_size, n_cells, cell, reference)
+             ? lexicographic_index<dim>(cell, n_cells)
+             : numbers::invalid_unsigned_int;
   }
 
 
   /**
-   * Every cell of the grid is a coarse cell, and p4est keeps every coarse
-   * cell on every rank: the grid's memory per rank does not fall with the
-   * number of ranks. Measured (peak resident memory of a run, less its
-   * points): about 1.6 kB per cell in 2D and 2.5 kB in 3D. A grid that
-   * cannot fit stops here with the parameter named, instead of ending in
-   * std::bad_alloc or taking the machine's memory.
+   * The number of coarse cells of the grid with tiles of @p T cells: the
+   * tiles are the cells of a coarse mesh refined globally as often as
+   * every direction's tile count is divisible by 2 (refinements), and
+   * p4est keeps every coarse cell on every rank.
+   */
+  template <int dim>
+  std::pair<std::array<unsigned int, dim>, unsigned int>
+  coarse_mesh_of_tiles(const std::array<unsigned int, dim> &n_cells,
+                       const unsigned int                   T)
+  {
+    std::array<unsigned int, dim> coarse;
+    unsigned int                  refinements = 32;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        coarse[d]      = n_cells[d] / T;
+        unsigned int k = 0;
+        while (coarse[d] % (2u << k) == 0)
+          ++k;
+        refinements = std::min(refinements, k);
+      }
+    for (unsigned int d = 0; d < dim; ++d)
+      coarse[d] >>= refinements;
+    return {coarse, refinements};
+  }
+
+
+  /**
+   * A grid that cannot fit stops here with the parameter named, instead of
+   * ending in std::bad_alloc or taking the machine's memory. Measured
+   * (peak resident memory less the points, one rank): the refined tiles
+   * with their DoFs, tables and nodal vectors cost about 150 bytes per
+   * grid cell in 2D and 200 in 3D, divided among the ranks; a coarse cell,
+   * which every rank keeps, about 1 kB (2D) and 2 kB (3D).
    */
   template <int dim>
   void
@@ -134,21 +178,57 @@ namespace mpm
     double n = 1;
     for (unsigned int d = 0; d < dim; ++d)
       n *= n_cells[d];
-    const double bytes_per_cell = dim == 1 ? 500. : dim == 2 ? 1600. : 2500.;
+    const auto coarse   = coarse_mesh_of_tiles<dim>(n_cells, tile_size).first;
+    double     n_coarse = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_coarse *= coarse[d];
+    const double per_cell   = dim == 1 ? 100. : dim == 2 ? 150. : 200.;
+    const double per_coarse = dim == 1 ? 300. : dim == 2 ? 1000. : 2000.;
     const double ranks_here =
       Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD); // upper bound
-    const double needed    = n * bytes_per_cell * ranks_here;
+    const double needed    = n * per_cell + n_coarse * per_coarse * ranks_here;
     const double available = available_memory_bytes();
     if (n > 2147483647. || (available > 0 && needed > available))
       {
         std::ostringstream why;
         why << std::setprecision(3) << n << " cells need about " << needed / 1e9
-            << " GB for the grid on this machine (" << bytes_per_cell / 1e3
-            << " kB per cell on each rank; every rank holds every cell), "
-            << "more than the " << available / 1e9
-            << " GB available: use fewer cells";
+            << " GB for the grid on this machine (" << per_cell
+            << " bytes per cell, and " << per_coarse / 1e3 << " kB on each "
+            << "rank for each of the " << n_coarse
+            << " coarse cells), more than the " << available / 1e9
+            << " GB available: use fewer cells, or cell counts divisible by "
+               "a higher power of 2 (fewer coarse cells)";
         throw InputError("Grid/cells", cells_text, why.str());
       }
+  }
+
+
+  /// The tile size asked for by 'Grid/cells per tile' (see its
+  /// documentation).
+  template <int dim>
+  unsigned int
+  parse_tile_size(const std::string                   &text,
+                  const std::array<unsigned int, dim> &n_cells)
+  {
+    const auto divides_all = [&](const unsigned int T) {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (n_cells[d] % T != 0)
+          return false;
+      return true;
+    };
+    if (text == "auto")
+      return divides_all(4) ? 4 : divides_all(2) ? 2 : 1;
+    for (const unsigned int T : {1u, 2u, 4u, 8u})
+      if (text == std::to_string(T))
+        {
+          if (!divides_all(T))
+            throw InputError("Grid/cells per tile",
+                             text,
+                             "must divide 'Grid/cells' in every direction "
+                             "(or use auto)");
+          return T;
+        }
+    throw InputError("Grid/cells per tile", text, "must be 1, 2, 4, 8 or auto");
   }
 
 
@@ -175,6 +255,7 @@ namespace mpm
                            "must be whole numbers in [1, 100000]");
         n_cells[d] = static_cast<unsigned int>(cells[d]);
       }
+    tile_size = parse_tile_size<dim>(prm.get("cells per tile"), n_cells);
     check_grid_fits_in_memory(prm.get("cells"));
     for (unsigned int f = 0; f < 2 * dim; ++f)
       {
@@ -208,7 +289,13 @@ namespace mpm
     : prm(parameters)
     , comm(comm)
     , work_estimate(work_estimate)
-    , fe(1)
+    , T(parameters.tile_size)
+    , log2_T(parameters.tile_size == 1   ? 0
+             : parameters.tile_size == 2 ? 1
+             : parameters.tile_size == 4 ? 2
+                                         : 3)
+    // Equidistant support points: the DoFs of a tile are the grid's nodes.
+    , fe(QIterated<1>(QTrapezoid<1>(), parameters.tile_size))
   {
     // p4est needs dim >= 2; a 1D grid is serial (verification problems).
     if constexpr (dim == 1)
@@ -223,32 +310,34 @@ namespace mpm
     else
       tria = std::make_unique<parallel::distributed::Triangulation<dim>>(comm);
 
-    // Every cell a coarse cell. A coarse mesh refined globally would save
-    // memory (p4est keeps every coarse cell on every rank: 12% less peak
-    // memory on 1 rank, 28% on 2, for a 512^2 grid), but deal.II's particle
-    // loops then ran 1.7-1.9x slower, even a loop that touches no grid
-    // data; see doc/performance.md.
-    std::vector<unsigned int> repetitions(prm.n_cells.begin(),
-                                          prm.n_cells.end());
-    // colorize: face f of the box gets boundary id f (x-, x+, y-, ...).
+    h = prm.cell_size();
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        inv_h[d]   = 1. / h[d];
+        n_tiles[d] = prm.n_cells[d] / T;
+      }
+    const auto [coarse, refinements] =
+      coarse_mesh_of_tiles<dim>(prm.n_cells, T);
+    std::vector<unsigned int> repetitions(coarse.begin(), coarse.end());
+    // colorize: face f of the box gets boundary id f (x-, x+, y-, ...),
+    // which the refined cells inherit.
     GridGenerator::subdivided_hyper_rectangle(
       *tria, repetitions, prm.lower_corner, prm.upper_corner, true);
 
     if constexpr (dim > 1)
+      if (!restart_file.empty())
+        // The refinement and the points come back with the partition; they
+        // stay attached for MaterialPoints::restore(). deal.II 9.4 loads
+        // with a uniform partition; restore_partition() puts back the work
+        // partition once the points are unpacked.
+        dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria).load(
+          restart_file);
+    if (restart_file.empty())
       {
-        if (!restart_file.empty())
-          // The points stay attached for MaterialPoints::restore(). deal.II
-          // 9.4 loads with a uniform partition; restore_partition() puts
-          // back the work partition once the points are unpacked.
-          dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria).load(
-            restart_file);
-        else
-          partition_by_work();
+        tria->refine_global(refinements);
+        partition_by_work();
       }
 
-    h = prm.cell_size();
-    for (unsigned int d = 0; d < dim; ++d)
-      inv_h[d] = 1. / h[d];
     distribute_nodes();
   }
 
@@ -269,14 +358,24 @@ namespace mpm
     if constexpr (dim > 1)
       if (partitions_by_work())
         {
-          // The +1 keeps every weight positive and lets empty cells count a
-          // little (a point costs about 30 times a node per step).
+          // A point costs about 30 times a node per step; the nodes (one
+          // per cell) keep every weight positive, so empty tiles count a
+          // little.
           auto &p_tria =
             dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria);
           auto connection = p_tria.signals.weight.connect(
             [&](const typename Triangulation<dim>::cell_iterator &cell,
                 const typename Triangulation<dim>::CellStatus) -> unsigned int {
-              return 1 + 30 * work_estimate(cell->vertex(0));
+              CellCoordinates c;
+              Point<dim>      xi;
+              locate(cell->center(), c, xi);
+              unsigned int weight = 0;
+              for_each_cell_of_tile(tile_of(c),
+                                    [&](const CellCoordinates &,
+                                        const Point<dim> &corner) {
+                                      weight += 1 + 30 * work_estimate(corner);
+                                    });
+              return weight;
             });
           p_tria.repartition();
           connection.disconnect();
@@ -308,20 +407,142 @@ namespace mpm
   {
     dofs.reinit(*tria);
     dofs.distribute_dofs(fe);
-    IndexSet relevant;
-    DoFTools::extract_locally_relevant_dofs(dofs, relevant);
-    scalar_partitioner =
-      std::make_shared<Utilities::MPI::Partitioner>(dofs.locally_owned_dofs(),
-                                                    relevant,
-                                                    comm);
+    std::vector<types::global_dof_index> global_nodes;
+    build_tile_tables(global_nodes);
+    const IndexSet &owned = dofs.locally_owned_dofs();
+    scalar_partitioner    = std::make_shared<Utilities::MPI::Partitioner>(
+      owned, relevant_nodes(global_nodes), comm);
     n_owned_nodes = scalar_partitioner->locally_owned_size();
 
-    owned_cells.clear();
+    // The tiles' nodes as local indices, and the owned nodes' places.
+    const IndexSet &ghosts = scalar_partitioner->ghost_indices();
+    tile_nodes.resize(global_nodes.size());
+    owned_node_lattice.resize(n_owned_nodes);
+    for (unsigned int t = 0; t < first_node_entry.size(); ++t)
+      if (first_node_entry[t] != invalid)
+        {
+          const CellCoordinates first = first_cell_of_tile(t);
+          for (unsigned int k = 0; k < Utilities::pow(T + 1, dim); ++k)
+            {
+              const auto    node  = global_nodes[first_node_entry[t] + k];
+              unsigned int &local = tile_nodes[first_node_entry[t] + k];
+              local = owned.is_element(node) || ghosts.is_element(node)
+                        ? scalar_partitioner->global_to_local(node)
+                        : invalid;
+              if (local < n_owned_nodes)
+                {
+                  unsigned int rest = k;
+                  for (unsigned int d = 0; d < dim; ++d, rest /= T + 1)
+                    owned_node_lattice[local][d] = first[d] + rest % (T + 1);
+                }
+            }
+        }
+
     node_constraints.clear();
     node_frictions.clear();
     node_dashpots.clear();
-    build_cell_tables();
     build_node_constraints();
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::build_tile_tables(
+    std::vector<types::global_dof_index> &global_nodes)
+  {
+    unsigned int n_total = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_total *= n_tiles[d];
+    tiles.assign(n_total, {});
+    first_node_entry.assign(n_total, invalid);
+    tile_of_active_cell.assign(tria->n_active_cells(), invalid);
+    owned_tiles.clear();
+
+    const std::vector<unsigned int> hierarchic =
+      FETools::lexicographic_to_hierarchic_numbering<dim>(T);
+    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+    // deal.II's order of the cells follows its refinement tree (a Morton
+    // order of the tiles within each coarse cell): the points are stored
+    // in it, and the loops visit the tiles in it.
+    for (const auto &cell : tria->active_cell_iterators())
+      if (cell->is_locally_owned() || cell->is_ghost())
+        {
+          CellCoordinates c;
+          Point<dim>      xi;
+          locate(cell->center(), c, xi);
+          const unsigned int index                       = tile_of(c);
+          tiles[index]                                   = cell;
+          tile_of_active_cell[cell->active_cell_index()] = index;
+          if (cell->is_locally_owned())
+            owned_tiles.push_back(index);
+          typename DoFHandler<dim>::active_cell_iterator(&*tria,
+                                                         cell->level(),
+                                                         cell->index(),
+                                                         &dofs)
+            ->get_dof_indices(dof_indices);
+          first_node_entry[index] = global_nodes.size();
+          for (const unsigned int i : hierarchic)
+            global_nodes.push_back(dof_indices[i]);
+        }
+  }
+
+
+  template <int dim>
+  IndexSet
+  BackgroundGrid<dim>::relevant_nodes(
+    const std::vector<types::global_dof_index> &global_nodes) const
+  {
+    // A point in an owned tile reaches nodes up to one beyond the nodes of
+    // that tile (the cubic B-spline: nodes i-1 ... i+2 of cell i). Only
+    // those nodes of the ghost tiles are kept, so that messages carry what
+    // the stencils touch rather than T layers of nodes.
+    const auto is_owned_tile = [&](const CellCoordinates &t) {
+      const unsigned int index = lexicographic_index<dim>(t, n_tiles);
+      return first_node_entry[index] != invalid &&
+             tiles[index]->is_locally_owned();
+    };
+    IndexSet                             relevant = dofs.locally_owned_dofs();
+    std::vector<types::global_dof_index> reached;
+    for (unsigned int t = 0; t < first_node_entry.size(); ++t)
+      if (first_node_entry[t] != invalid && tiles[t]->is_ghost())
+        {
+          const CellCoordinates first = first_cell_of_tile(t);
+          for (unsigned int k = 0; k < Utilities::pow(T + 1, dim); ++k)
+            {
+              CellCoordinates node;
+              unsigned int    rest = k;
+              for (unsigned int d = 0; d < dim; ++d, rest /= T + 1)
+                node[d] = first[d] + rest % (T + 1);
+              // The owned tiles whose nodes, widened by one, hold it: the
+              // tiles around tile t in each direction.
+              bool near = false;
+              for (unsigned int e = 0; e < Utilities::pow(3, dim) && !near; ++e)
+                {
+                  CellCoordinates other;
+                  bool            in   = true;
+                  unsigned int    code = e;
+                  for (unsigned int d = 0; d < dim; ++d, code /= 3)
+                    {
+                      const int o = static_cast<int>(first[d] / T) +
+                                    static_cast<int>(code % 3) - 1;
+                      const int lo = o * static_cast<int>(T) - 1;
+                      const int hi = (o + 1) * static_cast<int>(T) + 1;
+                      in = in && o >= 0 && o < static_cast<int>(n_tiles[d]) &&
+                           static_cast<int>(node[d]) >= lo &&
+                           static_cast<int>(node[d]) <= hi;
+                      other[d] = o;
+                    }
+                  near = in && is_owned_tile(other);
+                }
+              if (near)
+                reached.push_back(global_nodes[first_node_entry[t] + k]);
+            }
+        }
+    std::sort(reached.begin(), reached.end());
+    reached.erase(std::unique(reached.begin(), reached.end()), reached.end());
+    relevant.add_indices(reached.begin(), reached.end());
+    relevant.compress();
+    return relevant;
   }
 
 
@@ -337,11 +558,24 @@ namespace mpm
 
 
   template <int dim>
+  types::global_cell_index
+  BackgroundGrid<dim>::n_cells() const
+  {
+    types::global_cell_index n = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n *= prm.n_cells[d];
+    return n;
+  }
+
+
+  template <int dim>
   unsigned int
   BackgroundGrid<dim>::locate(const Point<dim> &x, Point<dim> &reference) const
   {
-    return locate_in_lattice<dim>(
-      x, prm.lower_corner, inv_h, prm.n_cells, reference);
+    CellCoordinates cell;
+    return locate(x, cell, reference)
+             ? lexicographic_index<dim>(cell, prm.n_cells)
+             : invalid;
   }
 
 
@@ -358,53 +592,14 @@ namespace mpm
 
 
   template <int dim>
-  void
-  BackgroundGrid<dim>::build_cell_tables()
+  double
+  BackgroundGrid<dim>::node_support_volume(const unsigned int i) const
   {
-    unsigned int n_total = 1;
+    const CellCoordinates c      = owned_node_lattice[i];
+    double                volume = 1;
     for (unsigned int d = 0; d < dim; ++d)
-      n_total *= prm.n_cells[d];
-    cells.resize(n_total);
-    cartesian_index_of_active_cell.assign(tria->n_active_cells(), invalid);
-    unsigned int n_nodes = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      n_nodes *= prm.n_cells[d] + 1;
-    local_node_of_cartesian.assign(n_nodes, invalid);
-
-    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
-    for (const auto &cell : tria->active_cell_iterators())
-      {
-        Point<dim>         reference;
-        const unsigned int index = locate(cell->center(), reference);
-        cells[index]             = cell;
-        cartesian_index_of_active_cell[cell->active_cell_index()] = index;
-        if (cell->is_artificial())
-          continue;
-        if (cell->is_locally_owned())
-          owned_cells.push_back(index);
-        // FE_Q(1) numbers its dofs like the vertices: lexicographically,
-        // bit d of v set for the upper vertex in direction d.
-        typename DoFHandler<dim>::active_cell_iterator dof_cell(&*tria,
-                                                                cell->level(),
-                                                                cell->index(),
-                                                                &dofs);
-        dof_cell->get_dof_indices(dof_indices);
-        const auto c = cell_coordinates(index);
-        for (unsigned int v = 0; v < dof_indices.size(); ++v)
-          {
-            unsigned int node = 0, stride = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                node += (c[d] + ((v >> d) & 1u)) * stride;
-                stride *= prm.n_cells[d] + 1;
-              }
-            local_node_of_cartesian[node] =
-              scalar_partitioner->global_to_local(dof_indices[v]);
-          }
-      }
-    // Lexicographic order keeps neighbouring cells, and so the nodal data
-    // they touch, close in memory during the particle loops.
-    std::sort(owned_cells.begin(), owned_cells.end());
+      volume *= (c[d] == 0 || c[d] == prm.n_cells[d] ? 0.5 : 1.) * h[d];
+    return volume;
   }
 
 
@@ -412,64 +607,50 @@ namespace mpm
   void
   BackgroundGrid<dim>::build_node_constraints()
   {
-    std::vector<unsigned int> mask(n_owned_nodes, 0u);
-    std::vector<unsigned int> friction_faces(n_owned_nodes, 0u);
-    // Per owned node, the area share of each absorbing face (a face's
-    // area is split equally among its 2^(dim-1) vertices). An owned node's
-    // faces may belong to ghost cells, so those are visited too; the
-    // masks only need one face of each kind and are the same either way.
-    std::map<std::pair<unsigned int, unsigned int>, double> dashpot_area;
-    std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned() || cell->is_ghost())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->at_boundary(f))
-            {
-              const unsigned int id   = cell->face(f)->boundary_id();
-              unsigned int       bits = 0;
-              if (prm.boundary[id] == BoundaryType::friction)
-                {
-                  cell->face(f)->get_dof_indices(face_dofs);
-                  for (const auto dof : face_dofs)
-                    if (scalar_partitioner->in_local_range(dof))
-                      friction_faces[scalar_partitioner->global_to_local(
-                        dof)] |= 1u << id;
-                  continue;
-                }
-              if (prm.boundary[id] == BoundaryType::absorbing)
-                {
-                  double share = 1;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    if (d != id / 2)
-                      share *= 0.5 * h[d];
-                  cell->face(f)->get_dof_indices(face_dofs);
-                  for (const auto dof : face_dofs)
-                    if (scalar_partitioner->in_local_range(dof))
-                      dashpot_area[{scalar_partitioner->global_to_local(dof),
-                                    id}] += share;
-                  continue;
-                }
-              if (prm.boundary[id] == BoundaryType::fixed)
-                bits = (1u << dim) - 1;
-              else if (prm.boundary[id] == BoundaryType::slip)
-                bits = 1u << (id / 2);
-              if (bits == 0)
-                continue;
-              cell->face(f)->get_dof_indices(face_dofs);
-              for (const auto dof : face_dofs)
-                if (scalar_partitioner->in_local_range(dof))
-                  mask[scalar_partitioner->global_to_local(dof)] |= bits;
-            }
+    // An owned node lies on face f (x min, x max, y min, ...) if its index
+    // in direction f / 2 is the first or the last; faces of each kind
+    // combine.
     for (unsigned int i = 0; i < n_owned_nodes; ++i)
       {
-        if (mask[i] != 0)
-          node_constraints.emplace_back(i, mask[i]);
-        if (friction_faces[i] != 0)
-          node_frictions.emplace_back(i, friction_faces[i]);
+        const CellCoordinates c    = owned_node_lattice[i];
+        unsigned int          mask = 0, friction_faces = 0;
+        for (unsigned int f = 0; f < 2 * dim; ++f)
+          {
+            const unsigned int d = f / 2;
+            if (c[d] != (f % 2 == 0 ? 0 : prm.n_cells[d]))
+              continue;
+            switch (prm.boundary[f])
+              {
+                case BoundaryType::fixed:
+                  mask |= (1u << dim) - 1;
+                  break;
+                case BoundaryType::slip:
+                  mask |= 1u << d;
+                  break;
+                case BoundaryType::friction:
+                  friction_faces |= 1u << f;
+                  break;
+                  case BoundaryType::absorbing: {
+                    // The node's share of the face: half a cell in each
+                    // tangential direction on either side of it.
+                    double area = 1;
+                    for (unsigned int e = 0; e < dim; ++e)
+                      if (e != d)
+                        area *=
+                          (c[e] == 0 || c[e] == prm.n_cells[e] ? 0.5 : 1.) *
+                          h[e];
+                    node_dashpots.push_back({i, f, area});
+                    break;
+                  }
+                case BoundaryType::free:
+                  break;
+              }
+          }
+        if (mask != 0)
+          node_constraints.emplace_back(i, mask);
+        if (friction_faces != 0)
+          node_frictions.emplace_back(i, friction_faces);
       }
-    for (const auto &[node_and_face, area] : dashpot_area)
-      node_dashpots.push_back(
-        {node_and_face.first, node_and_face.second, area});
   }
 
 
@@ -480,29 +661,20 @@ namespace mpm
   {
     // A node counts if it lies in the box up to a thousandth of a cell, so
     // that a box drawn on grid lines includes them.
-    std::vector<bool>                    inside(n_owned_nodes, false);
-    std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(cell_dofs);
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const Point<dim> x  = cell->vertex(v);
-              bool             in = true;
-              for (unsigned int d = 0; d < dim; ++d)
-                in = in && x[d] >= lower[d] - 1e-3 * h[d] &&
-                     x[d] <= upper[d] + 1e-3 * h[d];
-              // FE_Q(1): the DoF of vertex v is the v-th of the cell.
-              if (in && scalar_partitioner->in_local_range(cell_dofs[v]))
-                inside[scalar_partitioner->global_to_local(cell_dofs[v])] =
-                  true;
-            }
-        }
     std::vector<unsigned int> nodes;
     for (unsigned int i = 0; i < n_owned_nodes; ++i)
-      if (inside[i])
-        nodes.push_back(i);
+      {
+        const CellCoordinates c  = owned_node_lattice[i];
+        bool                  in = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double x = prm.lower_corner[d] + c[d] * h[d];
+            in =
+              in && x >= lower[d] - 1e-3 * h[d] && x <= upper[d] + 1e-3 * h[d];
+          }
+        if (in)
+          nodes.push_back(i);
+      }
     return nodes;
   }
 

@@ -600,13 +600,25 @@ namespace mpm
   void
   MaterialPoints<dim>::generate(const bool may_overlap)
   {
-    std::string             overlap;
-    const FieldLayout      &l = fields;
-    std::vector<Point<dim>> positions;
-    std::vector<Point<dim>> displaced_positions;              // at t = 0
-    std::vector<std::pair<unsigned int, unsigned int>> where; // (cell, body)
-    std::vector<std::vector<double>>                   props;
-    std::vector<Point<dim>>                            references;
+    std::string        overlap;
+    const FieldLayout &l             = fields;
+    bool               any_displaced = false;
+    for (const auto &body : body_list)
+      any_displaced = any_displaced || body.is_displaced();
+    std::vector<Point<dim>> displaced_positions; // at t = 0, by local id
+    std::vector<double>     p(l.n_properties);
+
+    // The points go straight into deal.II's storage, reserved from a count
+    // first: a copy of them, or a pool that grows by doubling, would set
+    // the run's peak memory.
+    types::particle_index n_expected = 0;
+    for (const unsigned int tile : grid.locally_owned_tiles())
+      grid.for_each_cell_of_tile(tile, [&](const auto &, const Point<dim> &c) {
+        for (const auto &body : body_list)
+          n_expected += body.count_seeds(c);
+      });
+    particles.reserve(n_expected);
+    types::particle_index n_local = 0;
 
     std::vector<types::particle_index> count(body_list.size(), 0);
     std::vector<double>                loaded_area(body_list.size(), 0.);
@@ -638,70 +650,73 @@ namespace mpm
           stress = Parse::vector_function<dim>(body.initial_stress,
                                                body.constants,
                                                body.name + "/initial stress");
-        for (const auto &cell : grid.triangulation().active_cell_iterators())
-          if (cell->is_locally_owned())
-            body.for_each_seed(
-              cell->vertex(0),
-              [&](const Point<dim>        &x,
-                  const Point<dim>        &xi,
-                  const double             volume,
-                  const SurfaceShare<dim> &surface) {
-                if (!may_overlap && overlap.empty())
-                  overlap = overlap_at(b, x);
-                const double mass = body.density * volume;
-                minimum_mass      = std::min(minimum_mass, mass);
-                std::vector<double> p(l.n_properties, 0.);
-                p[l.mass]   = mass;
-                p[l.volume] = volume;
-                p[l.body]   = b;
-                for (unsigned int d = 0; d < dim; ++d)
-                  p[l.velocity + d] = velocity->value(x, d);
-                // A speed whose square overflows is a typo, not physics:
-                // the first step would stop on a non-finite point.
-                if (overlap.empty() &&
-                    !std::isfinite(
-                      Fields::vector<dim>(p.data() + l.velocity).norm_square()))
-                  {
-                    std::ostringstream at;
-                    at << "is infinite or overflows at (" << x
-                       << "); give a finite velocity";
-                    std::string given;
-                    for (const auto &e : body.initial_velocity)
-                      given += (given.empty() ? "" : "; ") + e;
-                    overlap = InputError(body.name + "/initial velocity",
-                                         given,
-                                         at.str())
-                                .what();
-                  }
-                if (l.deformation_gradient != FieldLayout::absent)
+        for (const unsigned int tile : grid.locally_owned_tiles())
+          grid.for_each_cell_of_tile(
+            tile, [&](const auto &cell, const Point<dim> &corner) {
+              body.for_each_seed(
+                corner,
+                [&](const Point<dim>        &x,
+                    const Point<dim>        &xi,
+                    const double             volume,
+                    const SurfaceShare<dim> &surface) {
+                  if (!may_overlap && overlap.empty())
+                    overlap = overlap_at(b, x);
+                  const double mass = body.density * volume;
+                  minimum_mass      = std::min(minimum_mass, mass);
+                  std::fill(p.begin(), p.end(), 0.);
+                  p[l.mass]   = mass;
+                  p[l.volume] = volume;
+                  p[l.body]   = b;
                   for (unsigned int d = 0; d < dim; ++d)
-                    p[l.deformation_gradient + d * dim + d] = 1.;
-                if (l.affine_velocity != FieldLayout::absent)
-                  for (unsigned int c = 0; c < dim; ++c)
+                    p[l.velocity + d] = velocity->value(x, d);
+                  // A speed whose square overflows is a typo, not physics:
+                  // the first step would stop on a non-finite point.
+                  if (overlap.empty() &&
+                      !std::isfinite(Fields::vector<dim>(p.data() + l.velocity)
+                                       .norm_square()))
                     {
-                      const Tensor<1, dim> g = velocity->gradient(x, c);
-                      for (unsigned int d = 0; d < dim; ++d)
-                        p[l.affine_velocity + c * dim + d] = g[d];
+                      std::ostringstream at;
+                      at << "is infinite or overflows at (" << x
+                         << "); give a finite velocity";
+                      std::string given;
+                      for (const auto &e : body.initial_velocity)
+                        given += (given.empty() ? "" : "; ") + e;
+                      overlap = InputError(body.name + "/initial velocity",
+                                           given,
+                                           at.str())
+                                  .what();
                     }
-                if (l.initial_position != FieldLayout::absent)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    p[l.initial_position + d] = x[d];
-                if (l.surface_area != FieldLayout::absent)
-                  Fields::store(surface.area, p.data() + l.surface_area);
-                if (l.surface_offset != FieldLayout::absent)
-                  Fields::store(surface.offset, p.data() + l.surface_offset);
-                loaded_area[b] += surface.area.norm();
-                initialise_state(body, stress.get(), x, p.data());
-                Point<dim> start = x;
-                if (displacement)
-                  start = displace(*displacement, x, p.data());
-                positions.push_back(x);
-                displaced_positions.push_back(start);
-                references.push_back(xi);
-                where.emplace_back(grid.cartesian_index(cell), b);
-                props.push_back(std::move(p));
-                ++count[b];
-              });
+                  if (l.deformation_gradient != FieldLayout::absent)
+                    for (unsigned int d = 0; d < dim; ++d)
+                      p[l.deformation_gradient + d * dim + d] = 1.;
+                  if (l.affine_velocity != FieldLayout::absent)
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        const Tensor<1, dim> g = velocity->gradient(x, c);
+                        for (unsigned int d = 0; d < dim; ++d)
+                          p[l.affine_velocity + c * dim + d] = g[d];
+                      }
+                  if (l.initial_position != FieldLayout::absent)
+                    for (unsigned int d = 0; d < dim; ++d)
+                      p[l.initial_position + d] = x[d];
+                  if (l.surface_area != FieldLayout::absent)
+                    Fields::store(surface.area, p.data() + l.surface_area);
+                  if (l.surface_offset != FieldLayout::absent)
+                    Fields::store(surface.offset, p.data() + l.surface_offset);
+                  loaded_area[b] += surface.area.norm();
+                  initialise_state(body, stress.get(), x, p.data());
+                  if (any_displaced)
+                    displaced_positions.push_back(
+                      displacement ? displace(*displacement, x, p.data()) : x);
+                  // Numbered on this rank for now; made global below.
+                  particles.insert_particle(x,
+                                            grid.tile_reference(cell, xi),
+                                            n_local++,
+                                            grid.tile(tile),
+                                            make_array_view(p));
+                  ++count[b];
+                });
+            });
       }
     minimum_mass = Utilities::MPI::min(minimum_mass, comm);
     raise_if_any_failed(overlap, comm, true);
@@ -725,8 +740,7 @@ namespace mpm
                          "nothing");
 
     // Globally unique ids, numbered rank by rank.
-    const types::particle_index n_local = positions.size();
-    types::particle_index       first   = 0;
+    types::particle_index first = 0;
     MPI_Exscan(&n_local,
                &first,
                1,
@@ -735,25 +749,18 @@ namespace mpm
                comm);
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       first = 0; // MPI_Exscan leaves rank 0's result undefined
-    particles.reserve(n_local);
-    for (types::particle_index i = 0; i < n_local; ++i)
-      particles.insert_particle(positions[i],
-                                references[i],
-                                first + i,
-                                grid.cell(where[i].first),
-                                make_array_view(props[i]));
+    if (first != 0)
+      for (auto &point : particles)
+        point.set_id(point.get_id() + first);
     particles.update_cached_numbers();
 
     // Displaced bodies: the points were put in the cells of their reference
     // positions; move them to where they start, then give them the stress
     // of their initial F.
-    bool any_displaced = false;
-    for (const auto &body : body_list)
-      any_displaced = any_displaced || body.is_displaced();
     if (any_displaced)
       {
-        for (auto &p : particles)
-          p.set_location(displaced_positions[p.get_id() - first]);
+        for (auto &point : particles)
+          point.set_location(displaced_positions[point.get_id() - first]);
         relocate(OutOfGridPolicy::stop);
         for (unsigned int b = 0; b < body_list.size(); ++b)
           if (body_list[b].is_displaced())
@@ -896,22 +903,20 @@ namespace mpm
     bool                  off_rank = false;
     std::vector<double>   buffer(fields.n_properties);
 
-    for (const unsigned int here : grid.locally_owned_cells())
+    for (const unsigned int here : grid.locally_owned_tiles())
       {
-        const auto &cell = grid.cell(here);
-        // Count, not end(): inserting into a previously empty cell adds a
+        const auto &tile = grid.tile(here);
+        // Count, not end(): inserting into a previously empty tile adds a
         // container entry that end() of this range could then point to.
-        const unsigned int n = particles.n_particles_in_cell(cell);
+        const unsigned int n = particles.n_particles_in_cell(tile);
         if (n == 0)
           continue;
-        auto p = particles.particles_in_cell(cell).begin();
+        auto p = particles.particles_in_cell(tile).begin();
         for (unsigned int i = 0; i < n; ++i, ++p)
           {
-            Point<dim>         xi;
-            const unsigned int there = grid.locate(p->get_location(), xi);
-            if (there == here)
-              p->set_reference_location(xi);
-            else if (there == BackgroundGrid<dim>::invalid)
+            typename BackgroundGrid<dim>::CellCoordinates cell;
+            Point<dim>                                    xi;
+            if (!grid.locate(p->get_location(), cell, xi))
               {
                 // A NaN position is an unstable run, not a point that left:
                 // it must never be removed quietly.
@@ -930,8 +935,16 @@ namespace mpm
                   }
                 removals.push_back(p);
                 ++n_lost;
+                continue;
               }
-            else if (grid.cell(there)->is_locally_owned())
+            const unsigned int there = grid.tile_of(cell);
+            if (there == here)
+              {
+                p->set_reference_location(grid.tile_reference(cell, xi));
+                continue;
+              }
+            if (grid.tile(there).state() == IteratorState::valid &&
+                grid.tile(there)->is_locally_owned())
               {
                 // Copy first: the location and properties live in deal.II's
                 // property pool, which inserting may reallocate.
@@ -939,9 +952,9 @@ namespace mpm
                 const Point<dim> x   = p->get_location();
                 std::copy(src.begin(), src.end(), buffer.begin());
                 particles.insert_particle(x,
-                                          xi,
+                                          grid.tile_reference(cell, xi),
                                           p->get_id(),
-                                          grid.cell(there),
+                                          grid.tile(there),
                                           make_array_view(buffer));
                 removals.push_back(p);
                 ++moved_since_sort;
@@ -985,11 +998,12 @@ namespace mpm
         // mapping, which can differ from locate() in the last bit; the
         // bases read it, so a run would depend on when it sorted (a
         // restart resets the count above).
-        for (auto &p : particles)
+        for (auto &point : particles)
           {
-            Point<dim> xi;
-            grid.locate(p.get_location(), xi);
-            p.set_reference_location(xi);
+            typename BackgroundGrid<dim>::CellCoordinates cell;
+            Point<dim>                                    xi;
+            grid.locate(point.get_location(), cell, xi);
+            point.set_reference_location(grid.tile_reference(cell, xi));
           }
       }
     else if (changes & 2)

@@ -659,7 +659,9 @@ namespace mpm
         fields[c].update_ghost_values();
         data_out.add_data_vector(fields[c], names[c]);
       }
-    data_out.build_patches();
+    // One patch subdivision per grid cell of a tile: the patches' points
+    // are the grid's nodes.
+    data_out.build_patches(grid.tile_size());
     write_files(data_out, "grid", grid_files);
   }
 

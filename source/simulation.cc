@@ -353,7 +353,7 @@ namespace mpm
     state.values["minimum_point_mass"]   = points->min_particle_mass();
     state.values["checkpoint_next_time"] = next_checkpoint_time;
     state.values["point_properties"]     = points->layout().n_properties;
-    state.values["grid_cells"] = grid->triangulation().n_global_active_cells();
+    state.values["grid_cells"]           = grid->n_cells();
     Checkpoint::save(c.directory, *grid, *points, state, comm);
     last_checkpoint_wall = wall_seconds;
   }
@@ -408,8 +408,7 @@ namespace mpm
   Simulation<dim>::print_scene_summary() const
   {
     const auto &l = points->layout();
-    pcout << "dealii-mpm: " << dim << "D, "
-          << grid->triangulation().n_global_active_cells() << " cells, "
+    pcout << "dealii-mpm: " << dim << "D, " << grid->n_cells() << " cells, "
           << points->handler().n_global_particles() << " material points in "
           << body_parameters.size() << " bod"
           << (body_parameters.size() == 1 ? "y" : "ies") << ", "

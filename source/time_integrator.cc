@@ -319,18 +319,8 @@ namespace mpm
     if (this->virtual_fluid)
       {
         support_volume.reinit(grid.make_partitioner(1));
-        // The integral of a node's linear shape function: a share 1/2^dim
-        // of each cell around it (less at the grid's faces).
-        std::vector<types::global_dof_index> dofs(
-          grid.dof_handler().get_fe().n_dofs_per_cell());
-        for (const auto &cell : grid.dof_handler().active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              cell->get_dof_indices(dofs);
-              for (const auto dof : dofs)
-                support_volume(dof) += cell->measure() / dofs.size();
-            }
-        support_volume.compress(VectorOperation::add);
+        for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+          support_volume.local_element(i) = grid.node_support_volume(i);
         support_volume.update_ghost_values();
       }
     for (const auto &body : points.bodies())
@@ -1414,40 +1404,56 @@ namespace mpm
     TimerOutput::Scope               scope(timer, "F-bar");
     const FieldLayout               &l         = points.layout();
     Particles::ParticleHandler<dim> &particles = points.handler();
-    // Per body: the current and the reference volume of its points in the
-    // cell.
-    std::vector<std::array<double, 2>> volumes(density_of_body.size());
-    // The cell's points of deformable bodies, visited twice: deal.II's
-    // particle iterator is walked once.
-    std::vector<double *> deformable;
-    const auto            body = [&](const double *q) {
+    const unsigned int               n_bodies  = density_of_body.size();
+    const unsigned int cells_of_tile = Utilities::pow(grid.tile_size(), dim);
+    // Per cell of the tile and body: the current and the reference volume
+    // of its points, and per cell the number of points.
+    std::vector<std::array<double, 2>> volumes(cells_of_tile * n_bodies);
+    std::vector<unsigned int>          n_in_cell(cells_of_tile);
+    // The tile's points of deformable bodies with their (cell, body) bin,
+    // visited twice: deal.II's particle iterator is walked once.
+    std::vector<std::pair<double *, unsigned int>> deformable;
+    const auto                                     body = [&](const double *q) {
       return static_cast<unsigned int>(q[l.body]);
     };
     const auto reference_volume = [&](const double *q) {
       return q[l.mass] / density_of_body[body(q)];
     };
-    for (const unsigned int index : grid.locally_owned_cells())
+    for (const unsigned int index : grid.locally_owned_tiles())
       {
-        const auto        &cell = grid.cell(index);
-        const unsigned int n    = particles.n_particles_in_cell(cell);
+        const auto        &tile = grid.tile(index);
+        const unsigned int n    = particles.n_particles_in_cell(tile);
         if (n < 2)
           continue;
         std::fill(volumes.begin(), volumes.end(), std::array<double, 2>{});
+        std::fill(n_in_cell.begin(), n_in_cell.end(), 0u);
         deformable.clear();
-        auto p = particles.particles_in_cell(cell).begin();
+        const auto first = grid.first_cell_of_tile(index);
+        auto       p     = particles.particles_in_cell(tile).begin();
         for (unsigned int i = 0; i < n; ++i, ++p)
           {
+            typename BackgroundGrid<dim>::CellCoordinates cell;
+            Point<dim>                                    xi;
+            grid.cell_in_tile(first, p->get_reference_location(), cell, xi);
+            unsigned int c = 0;
+            for (int d = dim - 1; d >= 0; --d)
+              c = c * grid.tile_size() + (cell[d] - first[d]);
+            ++n_in_cell[c];
             double *const q = p->get_properties().data();
             if (density_of_body[body(q)] > 0) // not a rigid body
               {
-                volumes[body(q)][0] += q[l.volume];
-                volumes[body(q)][1] += reference_volume(q);
-                deformable.push_back(q);
+                const unsigned int bin = c * n_bodies + body(q);
+                volumes[bin][0] += q[l.volume];
+                volumes[bin][1] += reference_volume(q);
+                deformable.emplace_back(q, bin);
               }
           }
-        for (double *const q : deformable)
+        for (const auto &[q, bin] : deformable)
           {
-            const double J_cell = volumes[body(q)][0] / volumes[body(q)][1];
+            // A point alone in its cell keeps its own J.
+            if (n_in_cell[bin / n_bodies] < 2)
+              continue;
+            const double J_cell = volumes[bin][0] / volumes[bin][1];
             const double V0     = reference_volume(q);
             const double ratio  = J_cell * V0 / q[l.volume];
             const double scale  = dim == 1   ? ratio

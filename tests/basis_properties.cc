@@ -79,13 +79,20 @@ check(const double half_width, const bool interpolates_at_walls)
       f *= std::sin(1.3 * x[d] + d);
     return f;
   };
+  // The nodes by their lexicographic index in the grid of nodes.
+  auto node_index = [&](const std::array<unsigned int, dim> &node) {
+    unsigned int index = 0;
+    for (int d = dim - 1; d >= 0; --d)
+      index = index * (n_cells[d] + 1) + node[d];
+    return index;
+  };
   // The interpolant sum w_I g(x_I) of a smooth g at a point.
   auto interpolate = [&](const std::array<unsigned int, dim> &cell,
                          const Point<dim>                    &xi) {
     typename Basis::Stencil                  s;
     std::array<unsigned int, Basis::n_nodes> nodes;
     basis.evaluate(cell, xi, l, s);
-    basis.node_pattern(cell, s, nodes);
+    basis.node_pattern(cell, s, nodes, node_index);
     s.nodes  = nodes.data();
     double f = 0;
     for (unsigned int v = 0; v < Basis::n_nodes; ++v)
@@ -112,7 +119,7 @@ check(const double half_width, const bool interpolates_at_walls)
                                : r;
         }
       basis.evaluate(cell, xi, l, s);
-      basis.node_pattern(cell, s, nodes);
+      basis.node_pattern(cell, s, nodes, node_index);
       s.nodes = nodes.data();
       Point<dim> x;
       for (unsigned int d = 0; d < dim; ++d)

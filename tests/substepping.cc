@@ -204,17 +204,19 @@ end
     double      J = 0;
     for (const auto &p : scene.points->handler())
       {
-        const double *q = p.get_properties().data();
-        Point<2>      xi;
-        const auto    cell = scene.grid->locate(p.get_location(), xi);
-        basis.evaluate(scene.grid->cell_coordinates(cell), xi, {}, s);
-        basis.node_pattern(scene.grid->cell_coordinates(cell), s, nodes);
+        const double                           *q = p.get_properties().data();
+        Point<2>                                xi;
+        mpm::BackgroundGrid<2>::CellCoordinates cell;
+        scene.grid->locate(p.get_location(), cell, xi);
+        basis.evaluate(cell, xi, {}, s);
+        basis.node_pattern(cell, s, nodes, [&](const auto &node) {
+          return scene.grid->local_node(cell, node);
+        });
         Tensor<1, 2> v;
         Tensor<2, 2> grad_v;
         for (unsigned int k = 0; k < nodes.size(); ++k)
           {
-            const Tensor<1, 2> v_k =
-              scene.nodal_velocity(scene.grid->local_node(nodes[k]));
+            const Tensor<1, 2> v_k = scene.nodal_velocity(nodes[k]);
             v += s.weights[k] * v_k;
             grad_v += outer_product(v_k, s.gradients[k]);
           }

@@ -37,6 +37,33 @@ mpm_test(block_3d_mpi2 PRM block_3d.prm NP 2 REFERENCE block_3d.output RELTOL 1e
 mpm_test(two_disks_usf_mpi2 PRM two_disks.prm NP 2 REFERENCE two_disks_usf.output RELTOL 1e-7
   ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08")
 
+# 4b. Tiles ('Grid/cells per tile', the T^dim grid cells deal.II stores as
+#     one cell) change where the points are stored, not the answer: 1, 2
+#     and 4 (auto) cells per tile give the same history on 1 and 2 ranks.
+#     The cubic B-spline reaches one node beyond its cell's neighbours:
+#     across tiles of one cell and across ranks. F-bar averages J over
+#     grid cells, not tiles.
+mpm_test(two_disks_tile1 PRM two_disks.prm REFERENCE two_disks.output
+  RELTOL 1e-7 ARGS -s "Grid/cells per tile=1")
+mpm_test(two_disks_tile2_mpi2 PRM two_disks.prm NP 2
+  REFERENCE two_disks.output RELTOL 1e-7 ARGS -s "Grid/cells per tile=2")
+mpm_test(block_3d_cbs_tile1_mpi2 PRM block_3d.prm NP 2
+  REFERENCE block_3d_cbs.output RELTOL 1e-7
+  ARGS -s "Simulation/basis=cubic B-spline" -s "Grid/cells per tile=1")
+mpm_test(block_3d_cbs_tile2 PRM block_3d.prm
+  REFERENCE block_3d_cbs.output RELTOL 1e-7
+  ARGS -s "Simulation/basis=cubic B-spline" -s "Grid/cells per tile=2")
+mpm_test(nearly_incompressible_block_tile1
+  PRM nearly_incompressible_block.prm
+  REFERENCE nearly_incompressible_block.output RELTOL 1e-7
+  ARGS -s "Grid/cells per tile=1")
+mpm_test(bad_cells_per_tile PRM two_disks.prm EXIT 1
+  ARGS -s "Grid/cells per tile=3"
+  ERROR "parameter 'Grid/cells per tile' = '3': must be 1, 2, 4, 8 or auto")
+mpm_test(bad_cells_per_tile_divides PRM two_disks.prm EXIT 1
+  ARGS -s "Grid/cells per tile=8"
+  ERROR "parameter 'Grid/cells per tile' = '8': must divide 'Grid/cells' in every direction")
+
 # 5. Bad input: one line naming the parameter and what is allowed.
 set(base two_disks.prm)
 mpm_test(bad_density PRM ${base} EXIT 1 ARGS -s "Bodies/Body 0/density=-1000"

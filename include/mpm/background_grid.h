@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/partitioner.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
 
 #include <deal.II/dofs/dof_handler.h>
 
@@ -13,6 +14,7 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <memory>
@@ -67,6 +69,9 @@ namespace mpm
     double friction_coefficient; ///< Coulomb mu of the friction faces
     /// The body whose material sets the absorbing faces' impedances.
     unsigned int absorbing_body;
+    /// Grid cells per tile edge (a deal.II cell is a tile of T^dim grid
+    /// cells): a power of two that divides the cells in every direction.
+    unsigned int tile_size;
 
     /// Size of a cell in each direction.
     Tensor<1, dim>
@@ -79,29 +84,41 @@ namespace mpm
   };
 
 
-  /// The formula behind GridParameters::locate() and BackgroundGrid::locate(),
-  /// with the inverse cell size given (the hot path caches it).
+  /// The formula behind GridParameters::locate() and BackgroundGrid::locate():
+  /// the Cartesian indices of the cell holding @p x and @p x's coordinates
+  /// in it, with the inverse cell size given (the hot path caches it);
+  /// false outside the grid.
   template <int dim>
-  inline unsigned int
+  inline bool
   locate_in_lattice(const Point<dim>                    &x,
                     const Point<dim>                    &lower_corner,
                     const Tensor<1, dim>                &inverse_cell_size,
                     const std::array<unsigned int, dim> &n_cells,
+                    std::array<unsigned int, dim>       &cell,
                     Point<dim>                          &reference)
   {
-    unsigned int index  = 0;
-    unsigned int stride = 1;
     for (unsigned int d = 0; d < dim; ++d)
       {
         const double s = (x[d] - lower_corner[d]) * inverse_cell_size[d];
         // The negated comparison also sends NaN to 'outside'.
         if (!(s >= 0.) || !(s < n_cells[d]))
-          return numbers::invalid_unsigned_int;
-        const unsigned int i = static_cast<unsigned int>(s);
-        reference[d]         = s - i;
-        index += i * stride;
-        stride *= n_cells[d];
+          return false;
+        cell[d]      = static_cast<unsigned int>(s);
+        reference[d] = s - cell[d];
       }
+    return true;
+  }
+
+
+  /// The lexicographic index of the cell with Cartesian indices @p cell.
+  template <int dim>
+  inline unsigned int
+  lexicographic_index(const std::array<unsigned int, dim> &cell,
+                      const std::array<unsigned int, dim> &n_cells)
+  {
+    unsigned int index = 0;
+    for (int d = dim - 1; d >= 0; --d)
+      index = index * n_cells[d] + cell[d];
     return index;
   }
 
@@ -113,6 +130,17 @@ namespace mpm
    * tables built here turn those into deal.II cells and nodal-vector
    * indices without any search.
    *
+   * deal.II does not see the grid's cells one by one: its cells are
+   * *tiles* of T^dim grid cells (T = GridParameters::tile_size()), and an
+   * FE_Q(T) with equidistant support points puts its DoFs on the grid's
+   * nodes, so that the DoFHandler numbers and partitions the nodes as
+   * before. A deal.II cell with its DoFs costs about 500 bytes in 2D, more
+   * than a material point; with T = 4 that is 30-40 bytes per grid cell.
+   * The tiles are the cells of a coarse mesh refined globally, so p4est
+   * keeps on each rank only its part of the refined mesh, and memory falls
+   * with the number of ranks. deal.II's particle handler stores the points
+   * by tile; a point moves in deal.II only when it changes tile.
+   *
    * Nodal quantities live in LinearAlgebra::distributed::Vector objects
    * that interleave several components per node (node-major), so one
    * compress() or update_ghost_values() moves all of them at once.
@@ -122,13 +150,15 @@ namespace mpm
   {
   public:
     static constexpr unsigned int invalid = numbers::invalid_unsigned_int;
+    using CellCoordinates                 = std::array<unsigned int, dim>;
 
-    /// @p work_estimate, if given, says how much work a cell (given by its
-    /// lower corner) will carry; the distributed grid is then partitioned
-    /// so that every rank gets the same work rather than the same number
-    /// of cells (material points usually fill only part of the grid).
-    /// @p restart_file: load the partition (and the points attached to
-    /// it) from a checkpoint instead of partitioning by @p work_estimate.
+    /// @p work_estimate, if given, says how much work a grid cell (given
+    /// by its lower corner) will carry; the distributed grid is then
+    /// partitioned so that every rank gets the same work rather than the
+    /// same number of cells (material points usually fill only part of
+    /// the grid). @p restart_file: load the partition (and the points
+    /// attached to it) from a checkpoint instead of partitioning by
+    /// @p work_estimate.
     BackgroundGrid(
       const GridParameters<dim>                             &parameters,
       MPI_Comm                                               comm,
@@ -169,6 +199,9 @@ namespace mpm
     }
     double
     min_cell_size() const;
+    /// Number of grid cells (all ranks).
+    types::global_cell_index
+    n_cells() const;
 
     /// Lexicographic index of the cell that holds @p x, or invalid if @p x
     /// lies outside the grid. @p reference receives x in the cell's
@@ -176,55 +209,161 @@ namespace mpm
     unsigned int
     locate(const Point<dim> &x, Point<dim> &reference) const;
 
-    /// The deal.II cell with lexicographic index @p index.
-    const typename Triangulation<dim>::active_cell_iterator &
-    cell(const unsigned int index) const
+    /// The same, as the cell's Cartesian indices (i, j, k); false outside.
+    bool
+    locate(const Point<dim> &x,
+           CellCoordinates  &cell,
+           Point<dim>       &reference) const
     {
-      return cells[index];
+      return locate_in_lattice<dim>(
+        x, prm.lower_corner, inv_h, prm.n_cells, cell, reference);
     }
 
-    /// Lexicographic index of a deal.II cell.
+    /// Cells per tile edge (T).
     unsigned int
-    cartesian_index(
+    tile_size() const
+    {
+      return T;
+    }
+
+    /// Lexicographic index of the tile that holds the grid cell @p cell.
+    unsigned int
+    tile_of(const CellCoordinates &cell) const
+    {
+      unsigned int index = 0;
+      for (int d = dim - 1; d >= 0; --d)
+        index = index * n_tiles[d] + (cell[d] >> log2_T);
+      return index;
+    }
+
+    /// The deal.II cell of the tile with lexicographic index @p index (an
+    /// owned or ghost tile).
+    const typename Triangulation<dim>::active_cell_iterator &
+    tile(const unsigned int index) const
+    {
+      return tiles[index];
+    }
+
+    /// Lexicographic index of the tile a deal.II cell is.
+    unsigned int
+    tile_index(
       const typename Triangulation<dim>::active_cell_iterator &cell) const
     {
-      return cartesian_index_of_active_cell[cell->active_cell_index()];
+      return tile_of_active_cell[cell->active_cell_index()];
     }
 
-    /// Lexicographic indices of the locally owned cells.
+    /// Lexicographic indices of the locally owned tiles, in deal.II's
+    /// order of its cells, which is the order of the points' data.
     const std::vector<unsigned int> &
-    locally_owned_cells() const
+    locally_owned_tiles() const
     {
-      return owned_cells;
+      return owned_tiles;
     }
 
-    /// Cartesian indices (i, j, k) of the cell with lexicographic index
-    /// @p index.
-    std::array<unsigned int, dim>
-    cell_coordinates(unsigned int index) const
+    /// Cartesian indices of the lower corner cell of tile @p index.
+    CellCoordinates
+    first_cell_of_tile(unsigned int index) const
     {
-      std::array<unsigned int, dim> c;
+      CellCoordinates c;
       for (unsigned int d = 0; d < dim; ++d)
         {
-          c[d] = index % prm.n_cells[d];
-          index /= prm.n_cells[d];
+          c[d] = (index % n_tiles[d]) << log2_T;
+          index /= n_tiles[d];
         }
       return c;
     }
 
-    /// Local index (into a scalar layout) of the node with lexicographic
-    /// index @p cartesian_node, for every node of the locally owned and
-    /// ghost cells: the stencils of all bases stay within them, because a
-    /// point's nodes belong to its cell or to the cells next to it.
-    /// Other nodes give invalid.
-    unsigned int
-    local_node(const unsigned int cartesian_node) const
+    /// Call @p f(cell, lower corner) for every grid cell of tile @p index,
+    /// lexicographically.
+    template <typename Function>
+    void
+    for_each_cell_of_tile(const unsigned int index, const Function &f) const
     {
-      return local_node_of_cartesian[cartesian_node];
+      const CellCoordinates first = first_cell_of_tile(index);
+      for (unsigned int k = 0; k < Utilities::pow(T, dim); ++k)
+        {
+          CellCoordinates c;
+          Point<dim>      corner;
+          unsigned int    rest = k;
+          for (unsigned int d = 0; d < dim; ++d, rest /= T)
+            {
+              c[d]      = first[d] + rest % T;
+              corner[d] = prm.lower_corner[d] + c[d] * h[d];
+            }
+          f(c, corner);
+        }
     }
 
+    /// The reference coordinates in its tile of a point in grid cell
+    /// @p cell at reference coordinates @p xi (what deal.II stores).
+    Point<dim>
+    tile_reference(const CellCoordinates &cell, const Point<dim> &xi) const
+    {
+      Point<dim> r;
+      for (unsigned int d = 0; d < dim; ++d)
+        r[d] = ((cell[d] & (T - 1)) + xi[d]) / T;
+      return r;
+    }
+
+    /// The inverse of tile_reference(): the grid cell and the reference
+    /// coordinates in it of a point at @p reference in the tile whose
+    /// first cell is @p first. (Exact for T = 1; for larger T the point's
+    /// coordinates keep all but the last two or three bits.)
+    void
+    cell_in_tile(const CellCoordinates &first,
+                 const Point<dim>      &reference,
+                 CellCoordinates       &cell,
+                 Point<dim>            &xi) const
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double       s = reference[d] * T;
+          const unsigned int k = std::min(static_cast<unsigned int>(s), T - 1);
+          cell[d]              = first[d] + k;
+          xi[d]                = s - k;
+        }
+    }
+
+    /**
+     * Local index (into a scalar layout) of the node with Cartesian
+     * indices @p node, for a node of the stencil of a point in grid cell
+     * @p cell of an owned tile: the stencils of all bases reach at most one
+     * node beyond the cell's neighbours, so the node lies in the point's
+     * tile or in a tile next to it. Other nodes give invalid.
+     */
+    unsigned int
+    local_node(const CellCoordinates &cell, const CellCoordinates &node) const
+    {
+      unsigned int tile = 0, offset = 0;
+      for (int d = dim - 1; d >= 0; --d)
+        {
+          unsigned int t = cell[d] >> log2_T;
+          if (node[d] < (t << log2_T))
+            --t;
+          else if (node[d] > ((t + 1) << log2_T))
+            ++t;
+          tile   = tile * n_tiles[d] + t;
+          offset = offset * (T + 1) + (node[d] - (t << log2_T));
+        }
+      const unsigned int first = first_node_entry[tile];
+      return first == invalid ? invalid : tile_nodes[first + offset];
+    }
+
+    /// Cartesian indices of the owned node with local index @p i.
+    CellCoordinates
+    owned_node_coordinates(const unsigned int i) const
+    {
+      return owned_node_lattice[i];
+    }
+
+    /// The integral of the linear hat function of owned node @p i: a share
+    /// 1/2^dim of each cell around it (less at the grid's faces).
+    double
+    node_support_volume(const unsigned int i) const;
+
     /// The nodes' partitioner: local node index <-> global DoF index of
-    /// the FE_Q(1) DoFHandler (owned, then ghost nodes).
+    /// the FE_Q(T) DoFHandler (owned nodes, then the ghost nodes that
+    /// stencils of this rank's points reach).
     const Utilities::MPI::Partitioner &
     node_partitioner() const
     {
@@ -290,14 +429,25 @@ namespace mpm
     /// partition.
     void
     distribute_nodes();
+    /// The owned and ghost tiles, and the nodes of each in lexicographic
+    /// order (global DoF indices until distribute_nodes() makes them
+    /// local).
     void
-    build_cell_tables();
+    build_tile_tables(std::vector<types::global_dof_index> &global_nodes);
+    /// The owned nodes and the ghost nodes that stencils from owned tiles
+    /// reach.
+    IndexSet
+    relevant_nodes(
+      const std::vector<types::global_dof_index> &global_nodes) const;
     void
     build_node_constraints();
 
     const GridParameters<dim>                       prm;
     MPI_Comm                                        comm;
     std::function<unsigned int(const Point<dim> &)> work_estimate;
+    const unsigned int                              T;
+    const unsigned int                              log2_T;
+    CellCoordinates                                 n_tiles;
     std::unique_ptr<Triangulation<dim>>             tria;
     MappingCartesian<dim>                           cartesian_mapping;
     FE_Q<dim>                                       fe;
@@ -308,10 +458,14 @@ namespace mpm
     std::shared_ptr<const Utilities::MPI::Partitioner> scalar_partitioner;
     unsigned int                                       n_owned_nodes;
 
-    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
-    std::vector<unsigned int> cartesian_index_of_active_cell;
-    std::vector<unsigned int> owned_cells;
-    std::vector<unsigned int> local_node_of_cartesian;
+    /// Per tile (all of the grid's): its deal.II cell if owned or ghost,
+    /// and where its (T+1)^dim nodes start in tile_nodes (or invalid).
+    std::vector<typename Triangulation<dim>::active_cell_iterator> tiles;
+    std::vector<unsigned int>                          first_node_entry;
+    std::vector<unsigned int>                          tile_nodes;
+    std::vector<unsigned int>                          tile_of_active_cell;
+    std::vector<unsigned int>                          owned_tiles;
+    std::vector<CellCoordinates>                       owned_node_lattice;
     std::vector<std::pair<unsigned int, unsigned int>> node_constraints;
     std::vector<std::pair<unsigned int, unsigned int>> node_frictions;
     std::vector<AbsorbingNode>                         node_dashpots;

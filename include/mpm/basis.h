@@ -146,7 +146,7 @@ namespace mpm
    * A tensor-product basis on the Cartesian grid, built from a 1D kernel.
    * Weights and gradients come from the point's cell and reference
    * coordinates in a few flops; the stencil names the nodes by their
-   * Cartesian (lexicographic) index, which the grid maps to vector entries.
+   * Cartesian indices, which the grid maps to vector entries.
    *
    * Grid boundary. Where a stencil reaches a node beyond the grid (only
    * ever the one node just outside), that node's function is folded into
@@ -215,13 +215,8 @@ namespace mpm
       : n_cells(n_cells)
       , h(cell_size)
     {
-      unsigned int s = 1;
       for (unsigned int d = 0; d < dim; ++d)
-        {
-          inv_h[d]  = 1. / h[d];
-          stride[d] = s;
-          s *= n_cells[d] + 1;
-        }
+        inv_h[d] = 1. / h[d];
     }
 
     /**
@@ -275,29 +270,31 @@ namespace mpm
     }
 
     /**
-     * The Cartesian indices of the nodes of stencil @p s (after
-     * evaluate()), in the order of its weights. A node beyond the grid,
-     * whose weight the folding has set to zero, is replaced by the nearest
-     * grid node.
+     * The nodes of stencil @p s (after evaluate()), in the order of its
+     * weights, as @p index_of(Cartesian indices of the node): the grid's
+     * local index. A node beyond the grid, whose weight the folding has
+     * set to zero, is replaced by the nearest grid node.
      */
+    template <typename NodeIndex>
     inline void
     node_pattern(const std::array<unsigned int, dim> &cell,
                  const Stencil                       &s,
-                 std::array<unsigned int, n_nodes>   &nodes) const
+                 std::array<unsigned int, n_nodes>   &nodes,
+                 const NodeIndex                     &index_of) const
     {
       unsigned int node1[dim][n_1d];
       for (unsigned int d = 0; d < dim; ++d)
         for (unsigned int k = 0; k < n_1d; ++k)
           node1[d][k] = std::clamp(static_cast<int>(cell[d] + k) + s.first[d],
                                    0,
-                                   static_cast<int>(n_cells[d])) *
-                        stride[d];
+                                   static_cast<int>(n_cells[d]));
       for (unsigned int v = 0; v < n_nodes; ++v)
         {
-          unsigned int rest = v, node = 0;
+          std::array<unsigned int, dim> node;
+          unsigned int                  rest = v;
           for (unsigned int d = 0; d < dim; ++d, rest /= n_1d)
-            node += node1[d][rest % n_1d];
-          nodes[v] = node;
+            node[d] = node1[d][rest % n_1d];
+          nodes[v] = index_of(node);
         }
     }
 
@@ -373,7 +370,6 @@ namespace mpm
     std::array<unsigned int, dim> n_cells;
     Tensor<1, dim>                h;
     Tensor<1, dim>                inv_h;
-    std::array<unsigned int, dim> stride;
   };
 
 

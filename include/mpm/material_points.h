@@ -202,7 +202,7 @@ namespace mpm
     restore(const double minimum_point_mass);
 
     /**
-     * Call @p f with every locally owned point, cell by cell in the grid's
+     * Call @p f with every locally owned point, tile by tile in the grid's
      * order (the order of the step's loops). The handler's own order
      * differs after a restart (points come back sorted by cell), and sums
      * that cancel, like the momentum, would then differ in their last bits.
@@ -211,18 +211,18 @@ namespace mpm
     void
     for_each_by_cell(const Function &f) const
     {
-      for (const unsigned int index : grid.locally_owned_cells())
-        for (const auto &p : particles.particles_in_cell(grid.cell(index)))
+      for (const unsigned int index : grid.locally_owned_tiles())
+        for (const auto &p : particles.particles_in_cell(grid.tile(index)))
           f(p);
     }
 
     /**
-     * Put points back in their cells after their positions changed: update
-     * reference coordinates of those that stayed (almost all), move those
-     * that left their cell, and only if some left this rank's cells do the
-     * collective deal.II sort. Returns the number of points removed because
-     * they left the grid (policy remove); with policy stop it throws
-     * RunError naming the first such point.
+     * Put points back in their tiles after their positions changed: move
+     * those that left their tile (a point that changes cell within its
+     * tile stays where it is stored), and only if some left this rank's
+     * tiles do the collective deal.II sort. Returns the number of points
+     * removed because they left the grid (policy remove); with policy stop it
+     * throws RunError naming the first such point.
      */
     types::particle_index
     relocate(const OutOfGridPolicy policy);

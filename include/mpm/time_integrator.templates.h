@@ -18,12 +18,12 @@ namespace mpm
    */
   template <int dim, typename Basis>
   inline DEAL_II_ALWAYS_INLINE Tensor<2, dim>
-  apic_velocity_gradient(const Basis                                &basis,
-                         const typename Basis::Stencil              &s,
-                         const double                               *u,
-                         const unsigned int                          stride,
-                         const unsigned int                          slot,
-                         std::array<Tensor<1, dim>, Basis::n_nodes> &affine)
+                               apic_velocity_gradient(const Basis                                &basis,
+                                                      const typename Basis::Stencil              &s,
+                                                      const double                               *u,
+                                                      const unsigned int                          stride,
+                                                      const unsigned int                          slot,
+                                                      std::array<Tensor<1, dim>, Basis::n_nodes> &affine)
   {
     basis.affine_weights(s, affine);
     Tensor<2, dim> C;
@@ -43,10 +43,15 @@ namespace mpm
   }
 
   /**
-   * Visit every locally owned point cell by cell with its stencil: the
+   * Visit every locally owned point tile by tile with its stencil: the
    * nodes it touches (as local indices of the nodal vectors), the basis
    * weights and gradients at its position. Every particle loop of the step
    * goes through here, so the stencil is evaluated the same way everywhere.
+   * The point's cell and its reference coordinates there come from its
+   * reference location in the tile, set by the last relocation: all loops
+   * of a step see the points where the step began (MUSL's second transfer
+   * to the grid uses the step's first stencils), even after the gather
+   * has moved them.
    */
   template <int dim>
   template <typename Basis, typename Kernel>
@@ -56,41 +61,47 @@ namespace mpm
     typename Basis::Stencil s;
     Tensor<1, dim>          half_width;
     // The node lists of the patterns seen so far in the current cell: the
-    // lookup of nodal-vector indices is done once per cell and pattern.
+    // lookup of nodal-vector indices is done once per cell and pattern
+    // (the points of a cell are mostly stored together).
     std::array<std::array<unsigned int, Basis::n_nodes>, Basis::n_patterns>
-                                     nodes;
-    Particles::ParticleHandler<dim> &particles = points.handler();
-    for (const unsigned int index : grid.locally_owned_cells())
+                                                  nodes;
+    Particles::ParticleHandler<dim>              &particles = points.handler();
+    typename BackgroundGrid<dim>::CellCoordinates cell, last_cell;
+    const auto index_of = [&](const std::array<unsigned int, dim> &node) {
+      const unsigned int i = grid.local_node(cell, node);
+      // Every stencil node must be owned or a ghost here (see
+      // BackgroundGrid::local_node); Debug builds check it.
+      Assert(i != BackgroundGrid<dim>::invalid,
+             ExcMessage("a stencil node is not known on this rank"));
+      return i;
+    };
+    unsigned int known_patterns = 0;
+    last_cell.fill(BackgroundGrid<dim>::invalid);
+    for (const unsigned int index : grid.locally_owned_tiles())
       {
-        const auto        &cell = grid.cell(index);
-        const unsigned int n    = particles.n_particles_in_cell(cell);
+        const auto        &tile = grid.tile(index);
+        const unsigned int n    = particles.n_particles_in_cell(tile);
         if (n == 0)
           continue;
-        const auto   cell_coordinates = grid.cell_coordinates(index);
-        unsigned int known_patterns   = 0;
-        auto         p = particles.particles_in_cell(cell).begin();
+        const auto first = grid.first_cell_of_tile(index);
+        auto       p     = particles.particles_in_cell(tile).begin();
         for (unsigned int i = 0; i < n; ++i, ++p)
           {
+            Point<dim> xi;
+            grid.cell_in_tile(first, p->get_reference_location(), cell, xi);
+            if (cell != last_cell)
+              {
+                known_patterns = 0;
+                last_cell      = cell;
+              }
             double *q = p->get_properties().data();
             if constexpr (Basis::needs_half_width)
               half_width = domain_half_width(q);
-            basis.evaluate(cell_coordinates,
-                           p->get_reference_location(),
-                           half_width,
-                           s);
+            basis.evaluate(cell, xi, half_width, s);
             auto &list = nodes[s.pattern];
             if (!(known_patterns & (1u << s.pattern)))
               {
-                basis.node_pattern(cell_coordinates, s, list);
-                for (auto &node : list)
-                  {
-                    node = grid.local_node(node);
-                    // Every stencil node must be owned or a ghost here (see
-                    // BackgroundGrid::local_node); Debug builds check it.
-                    Assert(node != BackgroundGrid<dim>::invalid,
-                           ExcMessage("a stencil node is not known on this "
-                                      "rank"));
-                  }
+                basis.node_pattern(cell, s, list, index_of);
                 known_patterns |= 1u << s.pattern;
               }
             s.nodes = list.data();
