@@ -98,6 +98,16 @@ namespace mpm
                       "need less memory per cell (a tile costs about as "
                       "much as 16 material points) and coarser load "
                       "balancing; the answer does not depend on it.");
+    prm.declare_entry("load imbalance limit",
+                      "0.1",
+                      Patterns::Anything(),
+                      "With several MPI ranks: the largest imbalance of "
+                      "work (a rank's work / the mean - 1; a point weighs "
+                      "30 grid nodes) before the grid is repartitioned by "
+                      "the points each tile holds, with the points moving "
+                      "along (checked before every step; material that "
+                      "travels leaves its first partition behind). 0: "
+                      "never repartition.");
     prm.declare_entry("absorbing body",
                       "0",
                       Patterns::Anything(),
@@ -256,6 +266,8 @@ namespace mpm
         n_cells[d] = static_cast<unsigned int>(cells[d]);
       }
     tile_size = parse_tile_size<dim>(prm.get("cells per tile"), n_cells);
+    imbalance_limit =
+      Parse::bounded_double(prm, "Grid", "load imbalance limit", 0, 1e300);
     check_grid_fits_in_memory(prm.get("cells"));
     for (unsigned int f = 0; f < 2 * dim; ++f)
       {
@@ -353,33 +365,74 @@ namespace mpm
 
   template <int dim>
   void
-  BackgroundGrid<dim>::partition_by_work()
+  BackgroundGrid<dim>::partition_by_points(
+    const std::function<unsigned int(
+      const typename Triangulation<dim>::cell_iterator &)> &points_in_tile)
   {
     if constexpr (dim > 1)
-      if (partitions_by_work())
-        {
-          // A point costs about 30 times a node per step; the nodes (one
-          // per cell) keep every weight positive, so empty tiles count a
-          // little.
-          auto &p_tria =
-            dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria);
-          auto connection = p_tria.signals.weight.connect(
-            [&](const typename Triangulation<dim>::cell_iterator &cell,
-                const typename Triangulation<dim>::CellStatus) -> unsigned int {
-              CellCoordinates c;
-              Point<dim>      xi;
-              locate(cell->center(), c, xi);
-              unsigned int weight = 0;
-              for_each_cell_of_tile(tile_of(c),
-                                    [&](const CellCoordinates &,
-                                        const Point<dim> &corner) {
-                                      weight += 1 + 30 * work_estimate(corner);
-                                    });
-              return weight;
-            });
-          p_tria.repartition();
-          connection.disconnect();
-        }
+      {
+        // A point costs about 30 times a node per step; the nodes (one
+        // per cell) keep every weight positive, so empty tiles count a
+        // little.
+        auto &p_tria =
+          dynamic_cast<parallel::distributed::Triangulation<dim> &>(*tria);
+        const unsigned int nodes_per_tile = Utilities::pow(T, dim);
+        auto               connection     = p_tria.signals.weight.connect(
+          [&](const typename Triangulation<dim>::cell_iterator &cell,
+              const typename Triangulation<dim>::CellStatus) -> unsigned int {
+            return nodes_per_tile + 30 * points_in_tile(cell);
+          });
+        p_tria.repartition();
+        connection.disconnect();
+      }
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::partition_by_work()
+  {
+    if (partitions_by_work())
+      partition_by_points(
+        [&](const typename Triangulation<dim>::cell_iterator &cell) {
+          CellCoordinates c;
+          Point<dim>      xi;
+          locate(cell->center(), c, xi);
+          unsigned int n = 0;
+          for_each_cell_of_tile(tile_of(c),
+                                [&](const CellCoordinates &,
+                                    const Point<dim> &corner) {
+                                  n += work_estimate(corner);
+                                });
+          return n;
+        });
+  }
+
+
+  template <int dim>
+  double
+  BackgroundGrid<dim>::local_work(
+    const Particles::ParticleHandler<dim, dim> &particles) const
+  {
+    return double(owned_tiles.size()) * Utilities::pow(T, dim) +
+           30. * particles.n_locally_owned_particles();
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::repartition(
+    Particles::ParticleHandler<dim, dim> &particles)
+  {
+    if (dim == 1 || Utilities::MPI::n_mpi_processes(comm) == 1)
+      return;
+    particles.prepare_for_coarsening_and_refinement();
+    partition_by_points(
+      [&](const typename Triangulation<dim>::cell_iterator &cell) {
+        return particles.n_particles_in_cell(cell);
+      });
+    particles.unpack_after_coarsening_and_refinement();
+    distribute_nodes();
   }
 
 

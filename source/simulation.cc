@@ -1,5 +1,7 @@
 #include <deal.II/base/timer.h>
+
 #include <deal.II/base/utilities.h>
+#include <optional>
 
 #include <mpm/parameters.h>
 #include <mpm/simulation.h>
@@ -143,6 +145,8 @@ namespace mpm
       }
     // Balance the ranks by the material points each cell will hold (or
     // take the checkpoint's partition and points).
+    std::optional<TimerOutput::Scope> setup_scope;
+    setup_scope.emplace(*timer, "setup: grid");
     grid = std::make_unique<BackgroundGrid<dim>>(
       grid_parameters,
       comm,
@@ -179,7 +183,9 @@ namespace mpm
                             ? fields.wall_slips++
                             : numbers::invalid_unsigned_int);
     fields.point_load = fields.surface_area || !rigid_wall_parameters.empty();
-    points            = std::make_unique<MaterialPoints<dim>>(*grid,
+    setup_scope.reset();
+    setup_scope.emplace(*timer, "setup: points");
+    points = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    body_parameters,
                                                    fields,
                                                    comm);
@@ -192,8 +198,19 @@ namespace mpm
         if (resume->get("point_properties") != points->layout().n_properties)
           throw_scene_differs();
         points->restore(resume->get("minimum_point_mass"));
-        grid->restore_partition(points->handler());
+        // A run that never rebalanced had the partition of the initial
+        // work estimate, which comes back bit for bit; after rebalancing,
+        // the partition of the points as they are is the nearest (the
+        // history then agrees to round-off).
+        n_rebalances = resume->values.count("rebalances") > 0
+                         ? resume->get("rebalances")
+                         : 0;
+        if (n_rebalances > 0)
+          grid->repartition(points->handler());
+        else
+          grid->restore_partition(points->handler());
       }
+    setup_scope.reset();
     velocity_region =
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
     for (unsigned int w = 0; w < rigid_wall_parameters.size(); ++w)
@@ -248,7 +265,7 @@ namespace mpm
           for (const std::string end : {"_min", "_max"})
             columns.push_back("body" + std::to_string(b) + "_" + "xyz"[d] +
                               end);
-    output = std::make_unique<Output<dim>>(output_parameters,
+    output           = std::make_unique<Output<dim>>(output_parameters,
                                            *grid,
                                            *points,
                                            *integrator,
@@ -256,6 +273,7 @@ namespace mpm
                                            columns,
                                            comm,
                                            resume.get());
+    setup_peak_bytes = peak_memory_bytes();
     print_scene_summary();
     if (resume == nullptr)
       write_output(wall.wall_time());
@@ -292,6 +310,7 @@ namespace mpm
                 std::min(max_dt,
                          output->next_output_time() - integrator->time());
             stepping.start();
+            balance_load();
             integrator->step(max_dt);
             stepping.stop();
             const double now = integrator->time();
@@ -354,6 +373,7 @@ namespace mpm
     state.values["checkpoint_next_time"] = next_checkpoint_time;
     state.values["point_properties"]     = points->layout().n_properties;
     state.values["grid_cells"]           = grid->n_cells();
+    state.values["rebalances"]           = n_rebalances;
     Checkpoint::save(c.directory, *grid, *points, state, comm);
     last_checkpoint_wall = wall_seconds;
   }
@@ -506,6 +526,60 @@ namespace mpm
 
 
   template <int dim>
+  double
+  Simulation<dim>::imbalance() const
+  {
+    const auto work =
+      Utilities::MPI::min_max_avg(grid->local_work(points->handler()), comm);
+    return work.avg > 0 ? work.max / work.avg - 1 : 0;
+  }
+
+
+  /**
+   * Dynamic load balancing (as ASPECT and Lethe do with deal.II's
+   * particles): when the work of the busiest rank exceeds the mean by
+   * more than 'Grid/load imbalance limit', p4est repartitions the tiles
+   * weighted by the points they hold, the points travel with their tiles,
+   * and everything that holds nodal data is set up again. It runs between
+   * steps, where no nodal data carries over.
+   */
+  template <int dim>
+  void
+  Simulation<dim>::balance_load()
+  {
+    const double limit = grid_parameters.imbalance_limit;
+    if (Utilities::MPI::n_mpi_processes(comm) == 1 || dim == 1)
+      return;
+    TimerOutput::Scope scope(*timer, "load balance");
+    double             now = imbalance();
+    // If the last repartition could not get below the limit (tiles too
+    // coarse for the ranks), the next waits until the imbalance has grown
+    // by half the limit beyond what that one reached: repartitioning every
+    // step would gain nothing.
+    if (limit > 0 && now > std::max(limit, achieved_imbalance + 0.5 * limit))
+      {
+        grid->repartition(points->handler());
+        integrator->setup_nodal_data();
+        velocity_region->find_nodes(*grid);
+        ++n_rebalances;
+        now                = imbalance();
+        achieved_imbalance = now;
+      }
+    largest_imbalance = std::max(largest_imbalance, now);
+  }
+
+
+  template <int dim>
+  double
+  Simulation<dim>::peak_memory_bytes() const
+  {
+    Utilities::System::MemoryStats memory; // of this rank
+    Utilities::System::get_memory_stats(memory);
+    return Utilities::MPI::sum(double(memory.VmHWM) * 1024., comm);
+  }
+
+
+  template <int dim>
   void
   Simulation<dim>::print_performance(const double wall_seconds,
                                      const double step_seconds) const
@@ -519,12 +593,9 @@ namespace mpm
     auto ns = [&](const double seconds) {
       return 1e9 * seconds * n_ranks / std::max(particle_steps, 1.);
     };
-    Utilities::System::MemoryStats memory; // of this rank
-    Utilities::System::get_memory_stats(memory);
-    const double peak_bytes =
-      Utilities::MPI::sum(double(memory.VmHWM) * 1024., comm);
-    const double bytes_per_particle =
-      peak_bytes / std::max<double>(points->handler().n_global_particles(), 1);
+    const double n_points =
+      std::max<double>(points->handler().n_global_particles(), 1);
+    const double bytes_per_particle = peak_memory_bytes() / n_points;
     pcout << "Finished " << integrator->step_number() - first_step
           << " steps to t = " << integrator->time() << " in " << wall_seconds
           << " s (" << step_seconds << " s in steps): " << ns(step_seconds)
@@ -545,6 +616,10 @@ namespace mpm
         f << "ranks," << n_ranks << ",\n";
         f << "collective sorts," << points->n_collective_sorts() << ",\n";
         f << "peak bytes per particle," << bytes_per_particle << ",\n";
+        f << "rebalances," << n_rebalances << ",\n";
+        f << "largest imbalance," << largest_imbalance << ",\n";
+        f << "peak bytes per particle after setup,"
+          << setup_peak_bytes / n_points << ",\n";
       }
   }
 

@@ -304,25 +304,10 @@ namespace mpm
     , timer(timer)
     , comm(comm)
   {
-    grid_sums.reinit(grid.make_partitioner(n_fields * n_sums));
-    grid_velocity.reinit(grid.make_partitioner(n_fields * n_velocities));
+    setup_nodal_data();
     for (unsigned int b = 0; b < points.bodies().size(); ++b)
       field_of_body.push_back(this->contact ? this->contact->field_of_body(b)
                                             : 0);
-    if (this->contact)
-      contact_data.reinit(grid.make_partitioner(n_fields * (dim + 1)));
-    if (this->virtual_fluid)
-      {
-        fluid_volume.reinit(grid.make_partitioner(1));
-        fluid_force.reinit(grid.make_partitioner(n_fields * dim));
-      }
-    if (this->virtual_fluid)
-      {
-        support_volume.reinit(grid.make_partitioner(1));
-        for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
-          support_volume.local_element(i) = grid.node_support_volume(i);
-        support_volume.update_ghost_values();
-      }
     for (const auto &body : points.bodies())
       {
         // A rigid body's material is not used: no wave crosses it.
@@ -420,6 +405,26 @@ namespace mpm
                              std::to_string(prm.substeps),
                              allowed.str());
           }
+      }
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::setup_nodal_data()
+  {
+    grid_sums.reinit(grid.make_partitioner(n_fields * n_sums));
+    grid_velocity.reinit(grid.make_partitioner(n_fields * n_velocities));
+    if (contact)
+      contact_data.reinit(grid.make_partitioner(n_fields * (dim + 1)));
+    if (virtual_fluid)
+      {
+        fluid_volume.reinit(grid.make_partitioner(1));
+        fluid_force.reinit(grid.make_partitioner(n_fields * dim));
+        support_volume.reinit(grid.make_partitioner(1));
+        for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+          support_volume.local_element(i) = grid.node_support_volume(i);
+        support_volume.update_ghost_values();
       }
   }
 

@@ -72,6 +72,9 @@ namespace mpm
     /// Grid cells per tile edge (a deal.II cell is a tile of T^dim grid
     /// cells): a power of two that divides the cells in every direction.
     unsigned int tile_size;
+    /// Largest imbalance of work between ranks (max / mean - 1) before the
+    /// grid is repartitioned during the run; 0: never.
+    double imbalance_limit;
 
     /// Size of a cell in each direction.
     Tensor<1, dim>
@@ -416,6 +419,17 @@ namespace mpm
     void
     restore_partition(Particles::ParticleHandler<dim, dim> &particles);
 
+    /// This rank's work per step: its tiles' nodes and, at 30 times the
+    /// cost of a node, the points they hold (the weight of the partition).
+    double
+    local_work(const Particles::ParticleHandler<dim, dim> &particles) const;
+
+    /// Partition the grid by the points each tile holds now (the points
+    /// move with their tiles) and rebuild the nodes. Everything that holds
+    /// nodal data or node indices must be set up again afterwards.
+    void
+    repartition(Particles::ParticleHandler<dim, dim> &particles);
+
   private:
     /// True if the grid is partitioned by a work estimate: there is one,
     /// and more than one rank.
@@ -425,6 +439,12 @@ namespace mpm
     /// partitions_by_work()).
     void
     partition_by_work();
+    /// Repartition the distributed grid with the weight of each tile given
+    /// by @p points_in_tile (the points it holds or will hold).
+    void
+    partition_by_points(
+      const std::function<unsigned int(
+        const typename Triangulation<dim>::cell_iterator &)> &points_in_tile);
     /// Number the nodes and build every table that depends on the
     /// partition.
     void

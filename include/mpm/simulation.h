@@ -58,6 +58,15 @@ namespace mpm
     void
     print_performance(const double wall_seconds,
                       const double step_seconds) const;
+    /// Work of the busiest rank over the mean, less 1 (collective).
+    double
+    imbalance() const;
+    /// Repartition the grid if imbalance() exceeds the scene's limit.
+    void
+    balance_load();
+    /// Peak resident memory so far, summed over the ranks (collective).
+    double
+    peak_memory_bytes() const;
 
     MPI_Comm                              comm;
     ConditionalOStream                    pcout;
@@ -90,6 +99,14 @@ namespace mpm
     /// The step this run started from (not 0 after a restart): the cost per
     /// particle-step counts this run's steps.
     unsigned int first_step = 0;
+    /// Peak resident memory of all ranks once the scene is set up (before
+    /// the first output and step), in bytes.
+    double setup_peak_bytes = 0;
+    /// Repartitions during the run, and the largest imbalance any step
+    /// ran with (after its repartition, if it had one).
+    unsigned int n_rebalances       = 0;
+    double       largest_imbalance  = 0;
+    double       achieved_imbalance = 0; ///< right after the last one
   };
 } // namespace mpm
 

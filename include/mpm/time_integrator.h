@@ -122,6 +122,11 @@ namespace mpm
                    VirtualFluid<dim>                   *virtual_fluid = nullptr,
                    MultiFieldContact<dim>              *contact = nullptr);
 
+    /// (Re)create the nodal vectors and the nodal data that depend on the
+    /// grid's partition (after BackgroundGrid::repartition()).
+    void
+    setup_nodal_data();
+
     /// Advance by one step, of at most @p max_dt: an explicit step, or a
     /// macro step of substeps if the scene sets a macro time step. Throws
     /// RunError (on all ranks) with a diagnosis if the new state is not

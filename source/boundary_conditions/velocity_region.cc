@@ -98,17 +98,23 @@ namespace mpm
     const VelocityRegionParameters<dim> &parameters,
     const BackgroundGrid<dim>           &grid)
     : prm(parameters)
-    , nodes(parameters.enabled
-              ? grid.owned_nodes_in_box(parameters.lower_corner,
-                                        parameters.upper_corner)
-              : std::vector<unsigned int>())
   {
+    find_nodes(grid);
     if (prm.enabled &&
         Utilities::MPI::sum(nodes.size(),
                             grid.triangulation().get_communicator()) == 0)
       throw InputError("Boundary conditions/Velocity region/upper corner",
                        "",
                        "the box holds no grid node; make it reach a node");
+  }
+
+
+  template <int dim>
+  void
+  VelocityRegion<dim>::find_nodes(const BackgroundGrid<dim> &grid)
+  {
+    if (prm.enabled)
+      nodes = grid.owned_nodes_in_box(prm.lower_corner, prm.upper_corner);
   }
 
 

@@ -48,6 +48,11 @@ namespace mpm
     VelocityRegion(const VelocityRegionParameters<dim> &parameters,
                    const BackgroundGrid<dim>           &grid);
 
+    /// Find the region's owned nodes in @p grid (again, after the grid
+    /// was repartitioned).
+    void
+    find_nodes(const BackgroundGrid<dim> &grid);
+
     bool
     enabled() const
     {
@@ -80,7 +85,7 @@ namespace mpm
 
   private:
     const VelocityRegionParameters<dim> prm;
-    const std::vector<unsigned int>     nodes;
+    std::vector<unsigned int>           nodes;
     ReactionMeter<dim>                  meter;
   };
 } // namespace mpm
