@@ -1,6 +1,8 @@
 """Read the material point positions of one output frame (a .pvtu and its
-.vtu pieces, as dealii-mpm writes them: binary, zlib-compressed, UInt32
-headers) without VTK. Used by the benchmark scripts.
+.vtu pieces) without VTK. dealii-mpm writes the points with their data
+appended as raw binary (UInt64 byte counts); deal.II's own writer (the
+grid) writes inline binary, zlib-compressed with UInt32 headers: both are
+read. Used by the benchmark scripts.
 
     from vtu_points import read_points
     xyz = read_points("output/particles_00015.pvtu")   # list of (x, y, z)
@@ -36,25 +38,63 @@ def _tuples(kind, text, n_components):
             for i in range(0, len(values), n_components)]
 
 
+def _appended(data, offset, kind, n_components):
+    """A raw appended DataArray at @p offset of the appended section: a
+    UInt64 byte count, then the values."""
+    n = struct.unpack("<Q", data[offset:offset + 8])[0]
+    fmt, size = ("f", 4) if kind == "Float32" else ("d", 8)
+    values = struct.unpack("<%d%s" % (n // size, fmt),
+                           data[offset + 8:offset + 8 + n])
+    return [values[i:i + n_components]
+            for i in range(0, len(values), n_components)]
+
+
+def _read(path):
+    """The XML part of a .vtu and its appended raw data (b"" if none)."""
+    raw = open(path, "rb").read()
+    marker = raw.find(b"<AppendedData")
+    if marker < 0:
+        return raw.decode(), b""
+    start = raw.index(b"_", marker) + 1
+    return raw[:start].decode(), raw[start:]
+
+
+def _arrays(path, pattern):
+    """The tuples of every DataArray whose opening tag matches @p pattern
+    (groups: type, number of components, then the tag's rest)."""
+    xml, data = _read(path)
+    out, found = [], False
+    for m in re.finditer(pattern, xml, re.S):
+        kind, n = m.group(1), int(m.group(2) or 1)
+        found = True
+        appended = re.search(r'format="appended" offset="(\d+)"', m.group(0))
+        if appended:
+            out += _appended(data, int(appended.group(1)), kind, n)
+        else:
+            body = xml[m.end():xml.index("</DataArray>", m.end())]
+            out += _tuples(kind, body, n)
+    return out, found
+
+
 def read_vtu_points(path):
-    """Every <Piece> of the file: a run on several ranks writes one piece
-    per rank into the same .vtu."""
-    xml = open(path).read()
+    """Every <Piece> of the file."""
+    xml, data = _read(path)
     points = []
-    for m in re.finditer(r"<Points>\s*<DataArray[^>]*type=\"(Float32|Float64)\"[^>]*>"
-                         r"(.*?)</DataArray>", xml, re.S):
-        points += _tuples(m.group(1), m.group(2), 3)
+    for m in re.finditer(r'<Points>\s*(<DataArray[^>]*type="(Float32|Float64)"'
+                         r'[^>]*>)', xml, re.S):
+        appended = re.search(r'format="appended" offset="(\d+)"', m.group(1))
+        if appended:
+            points += _appended(data, int(appended.group(1)), m.group(2), 3)
+        else:
+            body = xml[m.end():xml.index("</DataArray>", m.end())]
+            points += _tuples(m.group(2), body, 3)
     return points
 
 
 def read_vtu_field(path, name):
-    xml = open(path).read()
-    values, found = [], False
-    for m in re.finditer(r"<DataArray type=\"(Float32|Float64)\" Name=\"%s\""
-                         r"(?: NumberOfComponents=\"(\d+)\")?[^>]*>(.*?)</DataArray>"
-                         % re.escape(name), xml, re.S):
-        values += _tuples(m.group(1), m.group(3), int(m.group(2) or 1))
-        found = True
+    values, found = _arrays(path, r'<DataArray type="(Float32|Float64)" Name="%s"'
+                            r'(?: NumberOfComponents="(\d+)")?[^>]*>'
+                            % re.escape(name))
     if not found:
         raise KeyError("no field '%s' in %s" % (name, path))
     return values

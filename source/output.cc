@@ -7,6 +7,7 @@
 
 #include <mpm/output.h>
 #include <mpm/parameters.h>
+#include <mpm/point_vtu_writer.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -517,124 +518,221 @@ namespace mpm
 
 
   template <int dim>
-  void
-  Output<dim>::write_particles()
+  std::vector<typename Output<dim>::PointField>
+  Output<dim>::point_fields() const
   {
     using DCI        = DataComponentInterpretation::DataComponentInterpretation;
     const DCI vector = DataComponentInterpretation::component_is_part_of_vector;
     const DCI tensor = DataComponentInterpretation::component_is_part_of_tensor;
     const DCI scalar = DataComponentInterpretation::component_is_scalar;
-
-    const FieldLayout   &l = points.layout();
-    ParticlePatches<dim> out;
-    const bool           velocity     = prm.writes("velocity");
-    const bool           displacement = prm.writes("displacement");
-    const bool           stress       = prm.writes("stress");
-    const bool           J            = prm.writes("J");
-    const bool           mass         = prm.writes("mass");
-    const bool           volume       = prm.writes("volume");
-    const bool           body         = prm.writes("body");
-    const bool           plastic      = prm.writes("plastic strain");
-    const bool           damage       = prm.writes("damage");
-    const bool           pressure     = prm.writes("pressure");
-    const bool           von_mises    = prm.writes("von Mises stress");
-    if (velocity)
-      out.add_field("velocity", dim, vector);
-    if (displacement)
-      out.add_field("displacement", dim, vector);
+    const FieldLayout      &l = points.layout();
+    std::vector<PointField> fields;
+    const auto              add = [&](const std::string &name,
+                         const std::string &field,
+                         const unsigned int n,
+                         const DCI          kind,
+                         auto               values) {
+      if (prm.writes(name))
+        fields.push_back({field, n, kind, values});
+    };
+    using Point = typename Particles::ParticleHandler<dim>::particle_iterator;
+    add("velocity", "velocity", dim, vector, [&l](const Point &p, double *v) {
+      for (unsigned int d = 0; d < dim; ++d)
+        v[d] = p->get_properties()[l.velocity + d];
+    });
+    add("displacement",
+        "displacement",
+        dim,
+        vector,
+        [&l](const Point &p, double *v) {
+          for (unsigned int d = 0; d < dim; ++d)
+            v[d] = p->get_location()[d] -
+                   p->get_properties()[l.initial_position + d];
+        });
     // deal.II's HDF5 filter writes a field of more than 3 components as a
     // vector of 3 (measured: the 2D stress tensor came out as 3 columns),
     // so in HDF5 the stress goes as its independent components.
-    const std::vector<std::pair<unsigned int, unsigned int>> stress_components =
-      dim == 1   ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0}}
-      : dim == 2 ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0},
-                                                                      {1, 1},
-                                                                      {0, 1}}
-                 : std::vector<std::pair<unsigned int, unsigned int>>{
-                     {0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
-    if (stress && prm.hdf5)
-      for (const auto &[i, j] : stress_components)
-        out.add_field(std::string("stress_") + "xyz"[i] + "xyz"[j], 1, scalar);
-    else if (stress)
-      out.add_field("stress", dim * dim, tensor);
-    if (J)
-      out.add_field("J", 1, scalar);
-    if (mass)
-      out.add_field("mass", 1, scalar);
-    if (volume)
-      out.add_field("volume", 1, scalar);
-    if (body)
-      out.add_field("body", 1, scalar);
-    if (plastic)
-      out.add_field("plastic_strain", 1, scalar);
-    if (damage)
-      out.add_field("damage", 1, scalar);
-    if (pressure)
-      out.add_field("pressure", 1, scalar);
-    if (von_mises)
-      out.add_field("von_Mises_stress", 1, scalar);
-
-    out.patches.reserve(points.handler().n_locally_owned_particles());
-    for (const auto &p : points.handler())
+    if (prm.hdf5)
       {
-        const double              *q = p.get_properties().data();
+        const std::vector<std::pair<unsigned int, unsigned int>> components =
+          dim == 1 ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0}}
+          : dim == 2
+            ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0},
+                                                                 {1, 1},
+                                                                 {0, 1}}
+            : std::vector<std::pair<unsigned int, unsigned int>>{
+                {0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+        for (const auto &[i, j] : components)
+          add("stress",
+              std::string("stress_") + "xyz"[i] + "xyz"[j],
+              1,
+              scalar,
+              [&l, i = i, j = j](const Point &p, double *v) {
+                v[0] = Fields::symmetric<dim>(p->get_properties().data() +
+                                              l.stress)[i][j];
+              });
+      }
+    else
+      add(
+        "stress", "stress", dim * dim, tensor, [&l](const Point &p, double *v) {
+          const auto s =
+            Fields::symmetric<dim>(p->get_properties().data() + l.stress);
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              v[i * dim + j] = s[i][j];
+        });
+    const auto scalar_of =
+      [&](const std::string &name, const std::string &field, auto value) {
+        add(name, field, 1, scalar, [value](const Point &p, double *v) {
+          v[0] = value(p->get_properties().data());
+        });
+      };
+    const auto &bodies = points.bodies();
+    scalar_of("J", "J", [&l, &bodies](const double *q) {
+      return q[l.volume] * bodies[q[l.body]].density / q[l.mass];
+    });
+    scalar_of("mass", "mass", [&l](const double *q) { return q[l.mass]; });
+    scalar_of("volume", "volume", [&l](const double *q) {
+      return q[l.volume];
+    });
+    scalar_of("body", "body", [&l](const double *q) { return q[l.body]; });
+    scalar_of("plastic strain", "plastic_strain", [&l](const double *q) {
+      return l.plastic_strain == FieldLayout::absent ? 0. : q[l.plastic_strain];
+    });
+    scalar_of("damage", "damage", [&l](const double *q) {
+      return l.damage == FieldLayout::absent ? 0. : q[l.damage];
+    });
+    scalar_of("pressure", "pressure", [&l, &bodies](const double *q) {
+      return -trace(bodies[q[l.body]].material->cauchy_stress_3d(q, l)) / 3.;
+    });
+    scalar_of("von Mises stress",
+              "von_Mises_stress",
+              [&l, &bodies](const double *q) {
+                const SymmetricTensor<2, 3> s =
+                  deviator(bodies[q[l.body]].material->cauchy_stress_3d(q, l));
+                return std::sqrt(1.5 * (s * s));
+              });
+    return fields;
+  }
+
+
+  template <int dim>
+  void
+  Output<dim>::write_particles()
+  {
+    const std::vector<PointField> fields = point_fields();
+    if (prm.hdf5)
+      write_hdf5_particles(fields);
+    else
+      write_vtu_particles(fields);
+  }
+
+
+  /**
+   * The VTU of the points, streamed field by field (PointVtuWriter): VTK
+   * wants 3 components for a vector and 9 for a tensor, so 2D ones are
+   * padded with zeros.
+   */
+  template <int dim>
+  void
+  Output<dim>::write_vtu_particles(const std::vector<PointField> &fields)
+  {
+    const auto &handler = points.handler();
+    const auto  fill    = [&](const unsigned int  n_values,
+                          const unsigned int  n_written,
+                          const auto         &values,
+                          std::vector<float> &out) {
+      out.assign(n_written * handler.n_locally_owned_particles(), 0.f);
+      std::vector<double> v(n_values);
+      std::size_t         k = 0;
+      for (auto p = handler.begin(); p != handler.end(); ++p, k += n_written)
+        {
+          values(p, v.data());
+          if (n_values == dim * dim && dim > 1)
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                out[k + 3 * i + j] = v[i * dim + j];
+          else
+            for (unsigned int c = 0; c < n_values; ++c)
+              out[k + c] = v[c];
+        }
+    };
+    using Point = typename Particles::ParticleHandler<dim>::particle_iterator;
+    const PointVtuWriter               writer(comm,
+                                handler.n_locally_owned_particles(),
+                                [&](std::vector<float> &out) {
+                                  fill(
+                                    dim,
+                                    3,
+                                    [](const Point &p, double *v) {
+                                      for (unsigned int d = 0; d < dim; ++d)
+                                        v[d] = p->get_location()[d];
+                                    },
+                                    out);
+                                });
+    std::vector<PointVtuWriter::Field> vtu_fields;
+    for (const PointField &f : fields)
+      {
+        const unsigned int n_written =
+          f.kind == DataComponentInterpretation::component_is_part_of_vector ? 3
+          : f.kind == DataComponentInterpretation::component_is_part_of_tensor
+            ? 9
+            : f.n_values;
+        vtu_fields.push_back(
+          {f.name, n_written, [&, n_written](std::vector<float> &out) {
+             fill(f.n_values, n_written, f.values, out);
+           }});
+      }
+    // One .vtu per output time whatever the number of ranks, written into
+    // the partial directory and moved out once complete (the .vtu first,
+    // the .pvtu that names it next, the .pvd record last), so a run killed
+    // at any moment leaves only complete frames, each listed in the .pvd
+    // or not at all.
+    const std::string frame =
+      "particles_" + Utilities::int_to_string(counter, 5);
+    const std::string partial_directory = prm.directory + "/" + partial + "/";
+    writer.write(partial_directory + frame + ".0.vtu",
+                 vtu_fields,
+                 integrator.time(),
+                 integrator.step_number());
+    if (is_root)
+      {
+        PointVtuWriter::write_pvtu(partial_directory + frame + ".pvtu",
+                                   frame + ".0.vtu",
+                                   vtu_fields);
+        publish_frame(frame + ".pvtu");
+        particle_files.emplace_back(integrator.time(), frame + ".pvtu");
+        write_pvd(prm.directory + "/particles.pvd", particle_files);
+      }
+  }
+
+
+  template <int dim>
+  void
+  Output<dim>::write_hdf5_particles(const std::vector<PointField> &fields)
+  {
+    ParticlePatches<dim> out;
+    for (const PointField &f : fields)
+      out.add_field(f.name, f.n_values, f.kind);
+    out.patches.reserve(points.handler().n_locally_owned_particles());
+    std::vector<double> v;
+    for (auto p = points.handler().begin(); p != points.handler().end(); ++p)
+      {
         DataOutBase::Patch<0, dim> patch;
-        patch.vertices[0] = p.get_location();
+        patch.vertices[0] = p->get_location();
         patch.patch_index = out.patches.size();
         patch.data.reinit(out.names.size(), 1);
         unsigned int c = 0;
-        auto put = [&](const double value) { patch.data(c++, 0) = value; };
-        if (velocity)
-          for (unsigned int d = 0; d < dim; ++d)
-            put(q[l.velocity + d]);
-        if (displacement)
-          for (unsigned int d = 0; d < dim; ++d)
-            put(p.get_location()[d] - q[l.initial_position + d]);
-        if (stress && prm.hdf5)
+        for (const PointField &f : fields)
           {
-            const auto s = Fields::symmetric<dim>(q + l.stress);
-            for (const auto &[i, j] : stress_components)
-              put(s[i][j]);
-          }
-        else if (stress)
-          {
-            const auto s = Fields::symmetric<dim>(q + l.stress);
-            for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int j = 0; j < dim; ++j)
-                put(s[i][j]);
-          }
-        if (J)
-          put(q[l.volume] * points.bodies()[q[l.body]].density / q[l.mass]);
-        if (mass)
-          put(q[l.mass]);
-        if (volume)
-          put(q[l.volume]);
-        if (body)
-          put(q[l.body]);
-        if (plastic)
-          put(l.plastic_strain == FieldLayout::absent ? 0.
-                                                      : q[l.plastic_strain]);
-        if (damage)
-          put(l.damage == FieldLayout::absent ? 0. : q[l.damage]);
-        if (pressure || von_mises)
-          {
-            const SymmetricTensor<2, 3> sigma =
-              points.bodies()[q[l.body]].material->cauchy_stress_3d(q, l);
-            if (pressure)
-              put(-trace(sigma) / 3.);
-            if (von_mises)
-              {
-                const SymmetricTensor<2, 3> s = deviator(sigma);
-                put(std::sqrt(1.5 * (s * s)));
-              }
+            v.resize(f.n_values);
+            f.values(p, v.data());
+            for (const double value : v)
+              patch.data(c++, 0) = value;
           }
         out.patches.push_back(std::move(patch));
       }
-
-    if (prm.hdf5)
-      write_hdf5_files(out, "particles", particle_files);
-    else
-      write_files(out, "particles", particle_files);
+    write_hdf5_files(out, "particles", particle_files);
   }
 
 

@@ -4,7 +4,8 @@
 
 1. A run killed with SIGKILL at random moments while it writes a frame
    every step leaves only complete files: every .vtu and .pvtu in the
-   directory parses as XML, and every frame the .pvd lists exists.
+   directory parses as XML (with all the raw data its header names), and
+   every frame the .pvd lists exists.
 2. A new run into that directory replaces the old frames ('existing
    output = replace', the default): no frame of the first run stays.
 3. With 'existing output = refuse' it stops with a one-line error naming
@@ -12,8 +13,34 @@
 
   output_robustness.py --exe build/dealii-mpm --scene tests/two_disks.prm
 """
-import argparse, glob, os, random, subprocess, sys, tempfile, time
+import argparse, glob, os, random, re, struct, subprocess, sys, tempfile, time
 import xml.etree.ElementTree as ET
+
+
+def check_vtu(name):
+    """Parse a .vtu or .pvtu; one with raw appended data (not XML there)
+    must hold every array its header names, each with its byte count,
+    and end with the closing tags right after the last one."""
+    raw = open(name, "rb").read()
+    marker = raw.find(b"<AppendedData")
+    if marker < 0:
+        ET.parse(name)
+        return
+    start = raw.index(b"_", marker) + 1
+    head = raw[:start - 1].decode()
+    ET.fromstring(head + "</AppendedData></VTKFile>")
+    tail = b"\n  </AppendedData>\n</VTKFile>\n"
+    if not raw.endswith(tail):
+        raise ET.ParseError("the appended data are not closed")
+    data = raw[start:len(raw) - len(tail)]
+    end = 0
+    for offset in sorted(int(o) for o in re.findall(r'offset="(\d+)"', head)):
+        if offset != end or offset + 8 > len(data):
+            raise ET.ParseError("array at %d: data end at %d" % (offset, end))
+        end = offset + 8 + struct.unpack("<Q", data[offset:offset + 8])[0]
+    if end != len(data):
+        raise ET.ParseError("%d bytes of data, the arrays need %d"
+                            % (len(data), end))
 
 
 def complete(directory):
@@ -22,7 +49,7 @@ def complete(directory):
     for name in glob.glob(os.path.join(directory, "*.vtu")) + \
             glob.glob(os.path.join(directory, "*.pvtu")):
         try:
-            ET.parse(name)
+            check_vtu(name)
         except ET.ParseError as e:
             problems.append("%s: %s" % (os.path.basename(name), e))
     pvd = os.path.join(directory, "particles.pvd")

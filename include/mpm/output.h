@@ -10,6 +10,7 @@
 #include <mpm/time_integrator.h>
 
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -112,8 +113,28 @@ namespace mpm
     }
 
   private:
+    /// A point field of 'Output/fields': its name in the files, its
+    /// values per point and how they read (scalar, vector or tensor), and
+    /// how they are computed from a point.
+    struct PointField
+    {
+      std::string                                              name;
+      unsigned int                                             n_values;
+      DataComponentInterpretation::DataComponentInterpretation kind;
+      std::function<void(
+        const typename Particles::ParticleHandler<dim>::particle_iterator &,
+        double *)>
+        values;
+    };
+    /// The fields 'Output/fields' asks for, in the order of the files.
+    std::vector<PointField>
+    point_fields() const;
     void
     write_particles();
+    void
+    write_vtu_particles(const std::vector<PointField> &fields);
+    void
+    write_hdf5_particles(const std::vector<PointField> &fields);
     void
     write_grid();
     /// VTU (+PVTU) of @p out at this time, and the PVD record @p base.pvd.
