@@ -102,6 +102,9 @@ namespace mpm
     /// Peak resident memory of all ranks once the scene is set up (before
     /// the first output and step), in bytes.
     double setup_peak_bytes = 0;
+    /// Resident memory of all ranks before the scene's data (the program's
+    /// libraries and MPI), in bytes.
+    double baseline_bytes = 0;
     /// Repartitions during the run, and the largest imbalance any step
     /// ran with (after its repartition, if it had one).
     unsigned int n_rebalances       = 0;
