@@ -1,8 +1,9 @@
 """Read the material point positions of one output frame (a .pvtu and its
 .vtu pieces) without VTK. dealii-mpm writes the points with their data
-appended as raw binary (UInt64 byte counts); deal.II's own writer (the
-grid) writes inline binary, zlib-compressed with UInt32 headers: both are
-read. Used by the benchmark scripts.
+appended, zlib-compressed, with UInt64 headers (one piece per rank);
+deal.II's own writer (the grid) writes inline binary, zlib-compressed with
+UInt32 headers: both (and raw appended data) are read. Used by the
+benchmark scripts.
 
     from vtu_points import read_points
     xyz = read_points("output/particles_00015.pvtu")   # list of (x, y, z)
@@ -38,13 +39,28 @@ def _tuples(kind, text, n_components):
             for i in range(0, len(values), n_components)]
 
 
-def _appended(data, offset, kind, n_components):
-    """A raw appended DataArray at @p offset of the appended section: a
-    UInt64 byte count, then the values."""
-    n = struct.unpack("<Q", data[offset:offset + 8])[0]
+def _appended_bytes(data, offset, compressed):
+    """The bytes of an appended DataArray at @p offset of the appended
+    section (UInt64 headers): raw, a byte count and the values; compressed,
+    the number of blocks, the block size, the last block's size and the
+    compressed size of each block, then the blocks."""
+    if not compressed:
+        n = struct.unpack("<Q", data[offset:offset + 8])[0]
+        return data[offset + 8:offset + 8 + n]
+    n_blocks = struct.unpack("<Q", data[offset:offset + 8])[0]
+    sizes = struct.unpack("<%dQ" % n_blocks,
+                          data[offset + 24:offset + 24 + 8 * n_blocks])
+    out, at = b"", offset + 24 + 8 * n_blocks
+    for size in sizes:
+        out += zlib.decompress(data[at:at + size])
+        at += size
+    return out
+
+
+def _appended(data, offset, kind, n_components, compressed):
+    raw = _appended_bytes(data, offset, compressed)
     fmt, size = ("f", 4) if kind == "Float32" else ("d", 8)
-    values = struct.unpack("<%d%s" % (n // size, fmt),
-                           data[offset + 8:offset + 8 + n])
+    values = struct.unpack("<%d%s" % (len(raw) // size, fmt), raw)
     return [values[i:i + n_components]
             for i in range(0, len(values), n_components)]
 
@@ -69,7 +85,8 @@ def _arrays(path, pattern):
         found = True
         appended = re.search(r'format="appended" offset="(\d+)"', m.group(0))
         if appended:
-            out += _appended(data, int(appended.group(1)), kind, n)
+            out += _appended(data, int(appended.group(1)), kind, n,
+                             "compressor=" in xml)
         else:
             body = xml[m.end():xml.index("</DataArray>", m.end())]
             out += _tuples(kind, body, n)
@@ -84,7 +101,8 @@ def read_vtu_points(path):
                          r'[^>]*>)', xml, re.S):
         appended = re.search(r'format="appended" offset="(\d+)"', m.group(1))
         if appended:
-            points += _appended(data, int(appended.group(1)), m.group(2), 3)
+            points += _appended(data, int(appended.group(1)), m.group(2), 3,
+                                "compressor=" in xml)
         else:
             body = xml[m.end():xml.index("</DataArray>", m.end())]
             points += _tuples(m.group(2), body, 3)

@@ -3,9 +3,12 @@
 
 #include <mpm/point_vtu_writer.h>
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -16,12 +19,10 @@ namespace mpm
   namespace
   {
     /// One data array of the appended section: its XML element (less the
-    /// offset), the bytes each point adds to it, and how this rank's part
-    /// is made.
+    /// offset), and how this rank's part is made.
     struct Array
     {
       std::string                              element;
-      unsigned int                             bytes_per_point;
       std::function<void(std::vector<char> &)> fill;
     };
 
@@ -66,51 +67,100 @@ namespace mpm
     std::function<void(std::vector<float> &)> positions)
     : comm(comm)
     , n_local(n_local_points)
-    , n_global(Utilities::MPI::sum(n_local_points, comm))
-    , first(0)
     , positions(std::move(positions))
   {
-    const int error =
-      MPI_Exscan(&n_local, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
-    AssertThrowMPI(error);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      first = 0; // MPI_Exscan leaves rank 0's result undefined
   }
 
 
+  namespace
+  {
+    /// @p bytes as VTK's zlib-compressed binary data: the header (UInt64:
+    /// number of blocks, block size, size of the last block, compressed
+    /// size of each block) and the blocks, each compressed on its own.
+    std::vector<char>
+    compress(const std::vector<char> &bytes)
+    {
+      constexpr std::uint64_t    block    = 1u << 20;
+      const std::uint64_t        n        = bytes.size();
+      const std::uint64_t        n_blocks = (n + block - 1) / block;
+      std::vector<std::uint64_t> header   = {
+          n_blocks, block, n_blocks == 0 ? 0 : n - (n_blocks - 1) * block};
+      std::vector<char> data;
+      for (std::uint64_t k = 0; k < n_blocks; ++k)
+        {
+          const std::uint64_t size = std::min(block, n - k * block);
+          uLongf              out  = compressBound(size);
+          const std::size_t   at   = data.size();
+          data.resize(at + out);
+          const int error =
+            compress2(reinterpret_cast<Bytef *>(data.data() + at),
+                      &out,
+                      reinterpret_cast<const Bytef *>(bytes.data() + k * block),
+                      size,
+                      Z_BEST_SPEED);
+          AssertThrow(error == Z_OK, ExcMessage("zlib failed"));
+          data.resize(at + out);
+          header.push_back(out);
+        }
+      std::vector<char> result(8 * header.size());
+      std::copy_n(reinterpret_cast<const char *>(header.data()),
+                  result.size(),
+                  result.data());
+      result.insert(result.end(), data.begin(), data.end());
+      return result;
+    }
+
+
+    /// A number in a fixed width, so that every rank knows the length of
+    /// the header before the sizes it will hold are known.
+    std::string
+    fixed(const unsigned long long value)
+    {
+      std::ostringstream s;
+      s << std::setw(20) << std::setfill('0') << value;
+      return s.str();
+    }
+  } // namespace
+
+
+  /**
+   * Each rank's points are one <Piece> of the file (VTK readers join the
+   * pieces of a file), with its arrays compressed by zlib as VTK does
+   * (blocks of 1 MiB, best speed). The appended data hold the arrays one
+   * after the other, each with the parts of rank 0, 1, ...: an array's
+   * place follows from a sum over the ranks, so every rank writes as soon
+   * as it has compressed an array, and only the root needs the offsets of
+   * all pieces, for the header, which has a fixed length.
+   */
   void
   PointVtuWriter::write(const std::string        &file_name,
                         const std::vector<Field> &fields,
                         const double              time,
                         const unsigned int        cycle) const
   {
-    // Points are VTK_VERTEX cells: cell i is point i (global numbering).
+    // Points are VTK_VERTEX cells: cell i of a piece is its point i.
     std::vector<Array> arrays;
     arrays.push_back({"<DataArray type=\"Float32\" NumberOfComponents=\"3\"",
-                      12,
                       [&](std::vector<char> &bytes) {
                         std::vector<float> x;
                         positions(x);
                         as_bytes(x, bytes);
                       }});
     arrays.push_back({"<DataArray type=\"Int64\" Name=\"connectivity\"",
-                      8,
                       [&](std::vector<char> &bytes) {
                         std::vector<std::int64_t> v(n_local);
                         for (unsigned long long i = 0; i < n_local; ++i)
-                          v[i] = first + i;
+                          v[i] = i;
                         as_bytes(v, bytes);
                       }});
     arrays.push_back({"<DataArray type=\"Int64\" Name=\"offsets\"",
-                      8,
                       [&](std::vector<char> &bytes) {
                         std::vector<std::int64_t> v(n_local);
                         for (unsigned long long i = 0; i < n_local; ++i)
-                          v[i] = first + i + 1;
+                          v[i] = i + 1;
                         as_bytes(v, bytes);
                       }});
     arrays.push_back({"<DataArray type=\"UInt8\" Name=\"types\"",
-                      1,
                       [&](std::vector<char> &bytes) {
                         bytes.assign(n_local, 1); // VTK_VERTEX
                       }});
@@ -118,7 +168,6 @@ namespace mpm
       arrays.push_back({"<DataArray type=\"Float32\" Name=\"" + f.name +
                           "\" NumberOfComponents=\"" +
                           std::to_string(f.n_components) + "\"",
-                        4 * f.n_components,
                         [&](std::vector<char> &bytes) {
                           std::vector<float> v;
                           f.fill(v);
@@ -126,43 +175,52 @@ namespace mpm
                           as_bytes(v, bytes);
                         }});
 
-    // Each array of the appended section: its byte count (UInt64), then
-    // the values of rank 0's points, rank 1's, ...
-    std::vector<unsigned long long> offset(arrays.size() + 1, 0);
-    for (unsigned int a = 0; a < arrays.size(); ++a)
-      offset[a + 1] = offset[a] + 8 + n_global * arrays[a].bytes_per_point;
-    std::ostringstream header;
-    const auto         element = [&](const unsigned int a) {
-      header << "      " << arrays[a].element
-             << " format=\"appended\" offset=\"" << offset[a] << "\"/>\n";
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+    // The header, with the piece of rank r holding n_points[r] points and
+    // array a at offsets[r][a]; its length does not depend on them.
+    const auto header = [&](const std::vector<unsigned long long> &n_points,
+                            const std::vector<unsigned long long> &offsets) {
+      std::ostringstream h;
+      h << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+           "byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+           "compressor=\"vtkZLibDataCompressor\">\n"
+        << "  <UnstructuredGrid>\n"
+        << "    <FieldData>\n"
+        << "      <DataArray type=\"Float64\" Name=\"TIME\" "
+           "NumberOfTuples=\"1\" format=\"ascii\">"
+        << std::setprecision(17) << std::scientific << time << "</DataArray>\n"
+        << "      <DataArray type=\"Int32\" Name=\"CYCLE\" "
+           "NumberOfTuples=\"1\" format=\"ascii\">"
+        << fixed(cycle) << "</DataArray>\n"
+        << "    </FieldData>\n";
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        {
+          const auto element = [&](const unsigned int a) {
+            h << "      " << arrays[a].element
+              << " format=\"appended\" offset=\""
+              << fixed(offsets[r * arrays.size() + a]) << "\"/>\n";
+          };
+          h << "    <Piece NumberOfPoints=\"" << fixed(n_points[r])
+            << "\" NumberOfCells=\"" << fixed(n_points[r]) << "\">\n"
+            << "    <Points>\n";
+          element(0);
+          h << "    </Points>\n    <Cells>\n";
+          for (unsigned int a = 1; a < 4; ++a)
+            element(a);
+          h << "    </Cells>\n    <PointData>\n";
+          for (unsigned int a = 4; a < arrays.size(); ++a)
+            element(a);
+          h << "    </PointData>\n    </Piece>\n";
+        }
+      h << "  </UnstructuredGrid>\n"
+        << "  <AppendedData encoding=\"raw\">\n_";
+      return h.str();
     };
-    header << "<?xml version=\"1.0\"?>\n"
-           << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
-              "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-           << "  <UnstructuredGrid>\n"
-           << "    <FieldData>\n"
-           << "      <DataArray type=\"Float64\" Name=\"TIME\" "
-              "NumberOfTuples=\"1\" format=\"ascii\">"
-           << std::setprecision(17) << time << "</DataArray>\n"
-           << "      <DataArray type=\"Int32\" Name=\"CYCLE\" "
-              "NumberOfTuples=\"1\" format=\"ascii\">"
-           << cycle << "</DataArray>\n"
-           << "    </FieldData>\n"
-           << "    <Piece NumberOfPoints=\"" << n_global
-           << "\" NumberOfCells=\"" << n_global << "\">\n"
-           << "    <Points>\n";
-    element(0);
-    header << "    </Points>\n    <Cells>\n";
-    for (unsigned int a = 1; a < 4; ++a)
-      element(a);
-    header << "    </Cells>\n    <PointData>\n";
-    for (unsigned int a = 4; a < arrays.size(); ++a)
-      element(a);
-    header << "    </PointData>\n    </Piece>\n  </UnstructuredGrid>\n"
-           << "  <AppendedData encoding=\"raw\">\n_";
-    const std::string head = header.str();
-    const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
-    const bool        root = Utilities::MPI::this_mpi_process(comm) == 0;
+    const std::vector<unsigned long long> zeros(n_ranks * arrays.size(), 0);
+    const MPI_Offset                      start =
+      header(std::vector<unsigned long long>(n_ranks, 0), zeros).size();
 
     MPI_File file;
     int      error = MPI_File_open(comm,
@@ -173,28 +231,38 @@ namespace mpm
     AssertThrowMPI(error);
     error = MPI_File_set_size(file, 0); // an older file of the name
     AssertThrowMPI(error);
-    const MPI_Offset  start = head.size();
-    std::vector<char> bytes;
+    std::vector<char>               bytes;
+    std::vector<unsigned long long> my_offsets(arrays.size());
+    unsigned long long              end = 0; // of the arrays so far
     for (unsigned int a = 0; a < arrays.size(); ++a)
       {
-        if (root)
-          {
-            const std::uint64_t n = n_global * arrays[a].bytes_per_point;
-            write_at(file,
-                     start + offset[a],
-                     reinterpret_cast<const char *>(&n),
-                     8);
-          }
         arrays[a].fill(bytes);
-        write_at(file,
-                 start + offset[a] + 8 + first * arrays[a].bytes_per_point,
-                 bytes.data(),
-                 bytes.size());
+        const std::vector<char>  data   = compress(bytes);
+        const unsigned long long size   = data.size();
+        unsigned long long       before = 0;
+        error =
+          MPI_Exscan(&size, &before, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+        AssertThrowMPI(error);
+        if (rank == 0)
+          before = 0; // MPI_Exscan leaves rank 0's result undefined
+        my_offsets[a] = end + before;
+        write_at(file, start + my_offsets[a], data.data(), data.size());
+        end += Utilities::MPI::sum(size, comm);
       }
-    if (root)
+    const std::vector<unsigned long long> n_points =
+      Utilities::MPI::gather(comm, n_local, 0);
+    const auto offsets_of_ranks = Utilities::MPI::gather(comm, my_offsets, 0);
+    if (rank == 0)
       {
+        std::vector<unsigned long long> offsets;
+        for (const auto &o : offsets_of_ranks)
+          offsets.insert(offsets.end(), o.begin(), o.end());
+        const std::string head = header(n_points, offsets);
+        Assert(head.size() == static_cast<std::size_t>(start),
+               ExcInternalError());
+        const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
         write_at(file, 0, head.data(), head.size());
-        write_at(file, start + offset.back(), tail.data(), tail.size());
+        write_at(file, start + end, tail.data(), tail.size());
       }
     error = MPI_File_close(&file);
     AssertThrowMPI(error);

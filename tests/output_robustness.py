@@ -33,11 +33,18 @@ def check_vtu(name):
     if not raw.endswith(tail):
         raise ET.ParseError("the appended data are not closed")
     data = raw[start:len(raw) - len(tail)]
+    compressed = "compressor=" in head
     end = 0
     for offset in sorted(int(o) for o in re.findall(r'offset="(\d+)"', head)):
         if offset != end or offset + 8 > len(data):
             raise ET.ParseError("array at %d: data end at %d" % (offset, end))
-        end = offset + 8 + struct.unpack("<Q", data[offset:offset + 8])[0]
+        n = struct.unpack("<Q", data[offset:offset + 8])[0]
+        if compressed:  # n blocks: 3 + n sizes, then the blocks
+            sizes = struct.unpack("<%dQ" % n,
+                                  data[offset + 24:offset + 24 + 8 * n])
+            end = offset + 8 * (3 + n) + sum(sizes)
+        else:
+            end = offset + 8 + n
     if end != len(data):
         raise ET.ParseError("%d bytes of data, the arrays need %d"
                             % (len(data), end))
@@ -50,7 +57,7 @@ def complete(directory):
             glob.glob(os.path.join(directory, "*.pvtu")):
         try:
             check_vtu(name)
-        except ET.ParseError as e:
+        except (ET.ParseError, struct.error, UnicodeDecodeError) as e:
             problems.append("%s: %s" % (os.path.basename(name), e))
     pvd = os.path.join(directory, "particles.pvd")
     if os.path.exists(pvd):

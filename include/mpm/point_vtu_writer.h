@@ -11,13 +11,13 @@ namespace mpm
 {
   /**
    * Material points as one VTK XML unstructured-grid file (.vtu) per output
-   * time for all ranks, with the data appended as raw binary and each rank
-   * writing its part of every array at its offset through MPI-IO. Arrays
-   * are produced and written one at a time, so the writer needs one
-   * array's values of this rank's points and nothing else: deal.II's
-   * writers first build a patch per point and then copies of all the
-   * data, which set a run's peak memory (measured: 400 bytes per point on
-   * top of the run's 270).
+   * time for all ranks: each rank's points are a piece of it, their arrays
+   * compressed (zlib) and appended, each rank writing its part of every
+   * array at its offset through MPI-IO. Arrays are produced, compressed
+   * and written one at a time, so the writer needs one array of this
+   * rank's points and nothing else: deal.II's writers first build a patch
+   * per point and then copies of all the data, which set a run's peak
+   * memory (measured: 400 bytes per point on top of the run's 300).
    */
   class PointVtuWriter
   {
