@@ -603,6 +603,11 @@ namespace mpm
     const double n_points =
       std::max<double>(points->handler().n_global_particles(), 1);
     const double bytes_per_particle = peak_memory_bytes() / n_points;
+    // The nodes whose values cross rank boundaries (summed over ranks):
+    // what the nodal exchanges of a step send, per component.
+    const double ghost_nodes =
+      Utilities::MPI::sum(double(grid->node_partitioner().n_ghost_indices()),
+                          comm);
     pcout << "Finished " << integrator->step_number() - first_step
           << " steps to t = " << integrator->time() << " in " << wall_seconds
           << " s (" << step_seconds << " s in steps): " << ns(step_seconds)
@@ -629,6 +634,7 @@ namespace mpm
           << setup_peak_bytes / n_points << ",\n";
         f << "baseline bytes per particle," << baseline_bytes / n_points
           << ",\n";
+        f << "ghost nodes," << ghost_nodes << ",\n";
       }
   }
 
