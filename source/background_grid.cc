@@ -491,10 +491,57 @@ namespace mpm
             }
         }
 
+    build_node_blocks();
     node_constraints.clear();
     node_frictions.clear();
     node_dashpots.clear();
     build_node_constraints();
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::build_node_blocks()
+  {
+    const unsigned int n_block = Utilities::pow(T + 3, dim);
+    first_block_entry.assign(first_node_entry.size(), invalid);
+    node_blocks.clear();
+    for (const unsigned int t : owned_tiles)
+      {
+        first_block_entry[t]        = node_blocks.size();
+        const CellCoordinates first = first_cell_of_tile(t);
+        for (unsigned int k = 0; k < n_block; ++k)
+          {
+            // The node, and the tile among t and its neighbours that holds
+            // it (each tile has its own nodes and those of its upper faces).
+            unsigned int    tile = 0, offset = 0, rest = k;
+            bool            in_grid = true;
+            CellCoordinates node;
+            for (unsigned int d = 0; d < dim; ++d, rest /= T + 3)
+              {
+                const int n = static_cast<int>(first[d] + rest % (T + 3)) - 1;
+                in_grid =
+                  in_grid && n >= 0 && n <= static_cast<int>(prm.n_cells[d]);
+                node[d] = n;
+              }
+            if (in_grid)
+              for (int d = dim - 1; d >= 0; --d)
+                {
+                  unsigned int u = first[d] >> log2_T;
+                  if (node[d] < first[d])
+                    --u;
+                  else if (node[d] > first[d] + T)
+                    ++u;
+                  tile   = tile * n_tiles[d] + u;
+                  offset = offset * (T + 1) + (node[d] - (u << log2_T));
+                }
+            node_blocks.push_back(
+              in_grid && first_node_entry[tile] != invalid
+                ? tile_nodes[first_node_entry[tile] + offset]
+                : invalid);
+          }
+      }
+    std::vector<unsigned int>().swap(tile_nodes);
   }
 
 

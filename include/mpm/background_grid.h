@@ -331,25 +331,39 @@ namespace mpm
      * Local index (into a scalar layout) of the node with Cartesian
      * indices @p node, for a node of the stencil of a point in grid cell
      * @p cell of an owned tile: the stencils of all bases reach at most one
-     * node beyond the cell's neighbours, so the node lies in the point's
-     * tile or in a tile next to it. Other nodes give invalid.
+     * node beyond the nodes of the point's cell, so each owned tile keeps
+     * the local indices of its nodes and one more layer around them (its
+     * node block). Nodes beyond the grid give invalid.
      */
     unsigned int
     local_node(const CellCoordinates &cell, const CellCoordinates &node) const
     {
-      unsigned int tile = 0, offset = 0;
+      const unsigned int tile = tile_of(cell);
+      return node_block(
+        tile)[node_block_offset(first_cell_of_tile(tile), node)];
+    }
+
+    /// The node block of owned tile @p tile: (T+3)^dim local indices,
+    /// lexicographic, from the node before the tile's first in every
+    /// direction (see node_block_offset()).
+    const unsigned int *
+    node_block(const unsigned int tile) const
+    {
+      Assert(first_block_entry[tile] != invalid,
+             ExcMessage("node blocks are kept for owned tiles only"));
+      return node_blocks.data() + first_block_entry[tile];
+    }
+
+    /// Where the node @p node lies in the node block of the tile whose first
+    /// cell is @p first.
+    unsigned int
+    node_block_offset(const CellCoordinates &first,
+                      const CellCoordinates &node) const
+    {
+      unsigned int offset = 0;
       for (int d = dim - 1; d >= 0; --d)
-        {
-          unsigned int t = cell[d] >> log2_T;
-          if (node[d] < (t << log2_T))
-            --t;
-          else if (node[d] > ((t + 1) << log2_T))
-            ++t;
-          tile   = tile * n_tiles[d] + t;
-          offset = offset * (T + 1) + (node[d] - (t << log2_T));
-        }
-      const unsigned int first = first_node_entry[tile];
-      return first == invalid ? invalid : tile_nodes[first + offset];
+        offset = offset * (T + 3) + (node[d] + 1 - first[d]);
+      return offset;
     }
 
     /// Cartesian indices of the owned node with local index @p i.
@@ -461,6 +475,10 @@ namespace mpm
       const std::vector<types::global_dof_index> &global_nodes) const;
     void
     build_node_constraints();
+    /// The node blocks of the owned tiles, from tile_nodes (which they
+    /// replace).
+    void
+    build_node_blocks();
 
     const GridParameters<dim>                       prm;
     MPI_Comm                                        comm;
@@ -479,10 +497,15 @@ namespace mpm
     unsigned int                                       n_owned_nodes;
 
     /// Per tile (all of the grid's): its deal.II cell if owned or ghost,
-    /// and where its (T+1)^dim nodes start in tile_nodes (or invalid).
+    /// and where its (T+1)^dim nodes start in tile_nodes (or invalid;
+    /// tile_nodes is emptied once the node blocks are built).
     std::vector<typename Triangulation<dim>::active_cell_iterator> tiles;
-    std::vector<unsigned int>                          first_node_entry;
-    std::vector<unsigned int>                          tile_nodes;
+    std::vector<unsigned int> first_node_entry;
+    std::vector<unsigned int> tile_nodes;
+    /// Per tile: where its node block starts in node_blocks (owned tiles;
+    /// invalid for the others).
+    std::vector<unsigned int>                          first_block_entry;
+    std::vector<unsigned int>                          node_blocks;
     std::vector<unsigned int>                          tile_of_active_cell;
     std::vector<unsigned int>                          owned_tiles;
     std::vector<CellCoordinates>                       owned_node_lattice;

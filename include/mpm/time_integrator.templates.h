@@ -66,9 +66,12 @@ namespace mpm
     std::array<std::array<unsigned int, Basis::n_nodes>, Basis::n_patterns>
                                                   nodes;
     Particles::ParticleHandler<dim>              &particles = points.handler();
-    typename BackgroundGrid<dim>::CellCoordinates cell, last_cell;
-    const auto index_of = [&](const std::array<unsigned int, dim> &node) {
-      const unsigned int i = grid.local_node(cell, node);
+    typename BackgroundGrid<dim>::CellCoordinates cell, last_cell, first;
+    // The stencil's nodes are looked up in the tile's node block (the
+    // tile's nodes and one layer around them): one load per node.
+    const unsigned int *block = nullptr;
+    const auto index_of       = [&](const std::array<unsigned int, dim> &node) {
+      const unsigned int i = block[grid.node_block_offset(first, node)];
       // Every stencil node must be owned or a ghost here (see
       // BackgroundGrid::local_node); Debug builds check it.
       Assert(i != BackgroundGrid<dim>::invalid,
@@ -83,8 +86,9 @@ namespace mpm
         const unsigned int n    = particles.n_particles_in_cell(tile);
         if (n == 0)
           continue;
-        const auto first = grid.first_cell_of_tile(index);
-        auto       p     = particles.particles_in_cell(tile).begin();
+        first  = grid.first_cell_of_tile(index);
+        block  = grid.node_block(index);
+        auto p = particles.particles_in_cell(tile).begin();
         for (unsigned int i = 0; i < n; ++i, ++p)
           {
             Point<dim> xi;
