@@ -563,7 +563,9 @@ namespace mpm
     // coarse for the ranks), the next waits until the imbalance has grown
     // by half the limit beyond what that one reached: repartitioning every
     // step would gain nothing.
-    if (limit > 0 && now > std::max(limit, achieved_imbalance + 0.5 * limit))
+    const double trigger =
+      achieved_imbalance > limit ? achieved_imbalance + 0.5 * limit : limit;
+    if (limit > 0 && now > trigger)
       {
         grid->repartition(points->handler());
         integrator->setup_nodal_data();
