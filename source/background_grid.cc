@@ -395,11 +395,8 @@ namespace mpm
     if (partitions_by_work())
       partition_by_points(
         [&](const typename Triangulation<dim>::cell_iterator &cell) {
-          CellCoordinates c;
-          Point<dim>      xi;
-          locate(cell->center(), c, xi);
           unsigned int n = 0;
-          for_each_cell_of_tile(tile_of(c),
+          for_each_cell_of_tile(tile_of(cell),
                                 [&](const CellCoordinates &,
                                     const Point<dim> &corner) {
                                   n += work_estimate(corner);
@@ -483,11 +480,7 @@ namespace mpm
                         ? scalar_partitioner->global_to_local(node)
                         : invalid;
               if (local < n_owned_nodes)
-                {
-                  unsigned int rest = k;
-                  for (unsigned int d = 0; d < dim; ++d, rest /= T + 1)
-                    owned_node_lattice[local][d] = first[d] + rest % (T + 1);
-                }
+                owned_node_lattice[local] = lattice_point(first, k, T + 1);
             }
         }
 
@@ -514,15 +507,15 @@ namespace mpm
           {
             // The node, and the tile among t and its neighbours that holds
             // it (each tile has its own nodes and those of its upper faces).
-            unsigned int    tile = 0, offset = 0, rest = k;
+            // The block starts one node before the tile's first: a node
+            // before the grid's first wraps around and counts as outside.
+            unsigned int    tile = 0, offset = 0;
             bool            in_grid = true;
-            CellCoordinates node;
-            for (unsigned int d = 0; d < dim; ++d, rest /= T + 3)
+            CellCoordinates node    = lattice_point(first, k, T + 3);
+            for (unsigned int d = 0; d < dim; ++d)
               {
-                const int n = static_cast<int>(first[d] + rest % (T + 3)) - 1;
-                in_grid =
-                  in_grid && n >= 0 && n <= static_cast<int>(prm.n_cells[d]);
-                node[d] = n;
+                --node[d];
+                in_grid = in_grid && node[d] <= prm.n_cells[d];
               }
             if (in_grid)
               for (int d = dim - 1; d >= 0; --d)
@@ -555,7 +548,6 @@ namespace mpm
       n_total *= n_tiles[d];
     tiles.assign(n_total, {});
     first_node_entry.assign(n_total, invalid);
-    tile_of_active_cell.assign(tria->n_active_cells(), invalid);
     owned_tiles.clear();
 
     const std::vector<unsigned int> hierarchic =
@@ -567,12 +559,8 @@ namespace mpm
     for (const auto &cell : tria->active_cell_iterators())
       if (cell->is_locally_owned() || cell->is_ghost())
         {
-          CellCoordinates c;
-          Point<dim>      xi;
-          locate(cell->center(), c, xi);
-          const unsigned int index                       = tile_of(c);
-          tiles[index]                                   = cell;
-          tile_of_active_cell[cell->active_cell_index()] = index;
+          const unsigned int index = tile_of(cell);
+          tiles[index]             = cell;
           if (cell->is_locally_owned())
             owned_tiles.push_back(index);
           typename DoFHandler<dim>::active_cell_iterator(&*tria,
@@ -609,14 +597,11 @@ namespace mpm
           const CellCoordinates first = first_cell_of_tile(t);
           for (unsigned int k = 0; k < Utilities::pow(T + 1, dim); ++k)
             {
-              CellCoordinates node;
-              unsigned int    rest = k;
-              for (unsigned int d = 0; d < dim; ++d, rest /= T + 1)
-                node[d] = first[d] + rest % (T + 1);
+              const CellCoordinates node = lattice_point(first, k, T + 1);
               // The owned tiles whose nodes, widened by one, hold it: the
               // tiles around tile t in each direction.
               bool near = false;
-              for (unsigned int e = 0; e < Utilities::pow(3, dim) && !near; ++e)
+              for (unsigned int e = 0; e < Utilities::pow(3u, dim) && !near; ++e)
                 {
                   CellCoordinates other;
                   bool            in   = true;

@@ -1000,7 +1000,8 @@ namespace mpm
         // restart resets the count above).
         for (auto &point : particles)
           {
-            typename BackgroundGrid<dim>::CellCoordinates cell;
+            // (Every point is in the grid here: deal.II sorted it.)
+            typename BackgroundGrid<dim>::CellCoordinates cell{};
             Point<dim>                                    xi;
             grid.locate(point.get_location(), cell, xi);
             point.set_reference_location(grid.tile_reference(cell, xi));

@@ -247,12 +247,17 @@ namespace mpm
       return tiles[index];
     }
 
-    /// Lexicographic index of the tile a deal.II cell is.
+    /// Lexicographic index of the tile a deal.II cell (of the finest
+    /// level) is: the one that holds its centre.
     unsigned int
-    tile_index(
-      const typename Triangulation<dim>::active_cell_iterator &cell) const
+    tile_of(const typename Triangulation<dim>::cell_iterator &cell) const
     {
-      return tile_of_active_cell[cell->active_cell_index()];
+      CellCoordinates c{};
+      Point<dim>      xi;
+      const bool      inside = locate(cell->center(), c, xi);
+      (void)inside;
+      Assert(inside, ExcInternalError());
+      return tile_of(c);
     }
 
     /// Lexicographic indices of the locally owned tiles, in deal.II's
@@ -285,14 +290,10 @@ namespace mpm
       const CellCoordinates first = first_cell_of_tile(index);
       for (unsigned int k = 0; k < Utilities::pow(T, dim); ++k)
         {
-          CellCoordinates c;
-          Point<dim>      corner;
-          unsigned int    rest = k;
-          for (unsigned int d = 0; d < dim; ++d, rest /= T)
-            {
-              c[d]      = first[d] + rest % T;
-              corner[d] = prm.lower_corner[d] + c[d] * h[d];
-            }
+          const CellCoordinates c = lattice_point(first, k, T);
+          Point<dim>            corner;
+          for (unsigned int d = 0; d < dim; ++d)
+            corner[d] = prm.lower_corner[d] + c[d] * h[d];
           f(c, corner);
         }
     }
@@ -445,6 +446,20 @@ namespace mpm
     repartition(Particles::ParticleHandler<dim, dim> &particles);
 
   private:
+    /// The @p k-th point, lexicographically, of a block of @p width^dim
+    /// lattice points whose first is @p first: the cells of a tile, its
+    /// nodes, its node block.
+    static CellCoordinates
+    lattice_point(const CellCoordinates &first,
+                  unsigned int           k,
+                  const unsigned int     width)
+    {
+      CellCoordinates c;
+      for (unsigned int d = 0; d < dim; ++d, k /= width)
+        c[d] = first[d] + k % width;
+      return c;
+    }
+
     /// True if the grid is partitioned by a work estimate: there is one,
     /// and more than one rank.
     bool
@@ -506,7 +521,6 @@ namespace mpm
     /// invalid for the others).
     std::vector<unsigned int>                          first_block_entry;
     std::vector<unsigned int>                          node_blocks;
-    std::vector<unsigned int>                          tile_of_active_cell;
     std::vector<unsigned int>                          owned_tiles;
     std::vector<CellCoordinates>                       owned_node_lattice;
     std::vector<std::pair<unsigned int, unsigned int>> node_constraints;
