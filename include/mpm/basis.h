@@ -40,6 +40,8 @@ namespace mpm
       static constexpr unsigned int n_nodes          = 2;
       static constexpr bool         needs_half_width = false;
 
+      static constexpr bool exact_surface_weights = false;
+
       static inline int
       evaluate(const double xi, const double, double *w, double *dw)
       {
@@ -59,8 +61,9 @@ namespace mpm
      */
     struct GIMP
     {
-      static constexpr unsigned int n_nodes          = 3;
-      static constexpr bool         needs_half_width = true;
+      static constexpr unsigned int n_nodes               = 3;
+      static constexpr bool         needs_half_width      = true;
+      static constexpr bool         exact_surface_weights = false;
 
       static inline int
       evaluate(const double xi, const double l, double *w, double *dw)
@@ -100,12 +103,27 @@ namespace mpm
     {
       static constexpr unsigned int n_nodes          = 3;
       static constexpr bool         needs_half_width = false;
+      /// Surface loads through the functions at the surface itself
+      /// (TensorProductBasis::weights_at), see scatter_to_grid.
+      static constexpr bool exact_surface_weights = true;
 
       static inline int
       evaluate(const double xi, const double, double *w, double *dw)
       {
-        const int    first = xi < 0.5 ? -1 : 0;
-        const double r     = xi - first; // distance to the first node
+        const int first = xi < 0.5 ? -1 : 0;
+        evaluate_piece(xi, first, 0, w, dw);
+        return first;
+      }
+
+      /// The functions of the nodes first, first + 1, first + 2 at @p xi.
+      static inline void
+      evaluate_piece(const double xi,
+                     const int    first,
+                     const double,
+                     double *w,
+                     double *dw)
+      {
+        const double r = xi - first; // distance to the first node
         const double a = 1.5 - r, b = r - 1., c = r - 0.5; // a, c in [0, 1]
         w[0]  = 0.5 * a * a;
         w[1]  = 0.75 - b * b;
@@ -113,7 +131,13 @@ namespace mpm
         dw[0] = -a;
         dw[1] = -2. * b;
         dw[2] = c;
-        return first;
+      }
+
+      /// Whether those three functions are one polynomial piece each there.
+      static inline bool
+      in_piece(const double xi, const int first, const double)
+      {
+        return xi >= first + 0.5 && xi <= first + 1.5;
       }
     };
 
@@ -123,6 +147,8 @@ namespace mpm
     {
       static constexpr unsigned int n_nodes          = 4;
       static constexpr bool         needs_half_width = false;
+
+      static constexpr bool exact_surface_weights = false;
 
       static inline int
       evaluate(const double xi, const double, double *w, double *dw)
@@ -187,6 +213,9 @@ namespace mpm
       double dw1[dim][n_1d];
       int    first[dim];
       double xi[dim];
+      /// The cell and the domain half-width (GIMP) it was evaluated with.
+      std::array<unsigned int, dim> cell;
+      double                        half_width[dim];
       /// Cell size (for node offsets).
       Tensor<1, dim> h;
 
@@ -233,24 +262,14 @@ namespace mpm
     {
       s.pattern = 0;
       s.h       = h;
+      s.cell    = cell;
       for (unsigned int d = 0; d < dim; ++d)
         {
-          double    *w     = s.w1[d];
-          double    *dw    = s.dw1[d];
-          const int  first = Kernel::evaluate(xi[d], half_width[d], w, dw);
-          const int  j0    = static_cast<int>(cell[d]) + first;
-          const auto n     = static_cast<int>(n_cells[d]);
-          if constexpr (n_1d >= 3)
-            {
-              if (j0 < 0)
-                fold_outside_node(w, dw, 0, 1, 2);
-              if (j0 + static_cast<int>(n_1d) - 1 > n)
-                fold_outside_node(w, dw, n_1d - 1, n_1d - 2, n_1d - 3);
-            }
-          for (unsigned int k = 0; k < n_1d; ++k)
-            dw[k] *= inv_h[d];
-          s.first[d] = first;
-          s.xi[d]    = xi[d];
+          const int first =
+            evaluate_1d(d, cell[d], xi[d], no_first, half_width[d], s);
+          s.first[d]      = first;
+          s.xi[d]         = xi[d];
+          s.half_width[d] = half_width[d];
           s.pattern |= (first + 1) << d;
         }
 
@@ -266,6 +285,54 @@ namespace mpm
           s.weights[v] = product_except(wd, dim);
           for (unsigned int d = 0; d < dim; ++d)
             s.gradients[v][d] = dwd[d] * product_except(wd, d);
+        }
+    }
+
+    /**
+     * The weights at x_p + @p offset of the nodes of stencil @p s: the
+     * functions of its nodes evaluated at another point, as a surface load
+     * needs them at the surface rather than at the point. False (and
+     * @p w unset) where those functions are not one polynomial piece from
+     * the point to there (the other point sees other nodes or another
+     * piece); then the caller needs another form. Exact where true.
+     */
+    inline bool
+    weights_at(const Stencil               &s,
+               const Tensor<1, dim>        &offset,
+               std::array<double, n_nodes> &w) const
+    {
+      // A little beyond a piece's end is still exact to round-off: the
+      // functions are continuous there (a face on a node line).
+      constexpr double tolerance = 1e-9;
+      if constexpr (!Kernel::exact_surface_weights)
+        return false;
+      else
+        {
+          Stencil shifted;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              double       xi = s.xi[d] + offset[d] * inv_h[d];
+              const double l  = s.half_width[d];
+              if (!Kernel::in_piece(xi, s.first[d], l))
+                {
+                  if (Kernel::in_piece(xi - tolerance, s.first[d], l))
+                    xi -= tolerance;
+                  else if (Kernel::in_piece(xi + tolerance, s.first[d], l))
+                    xi += tolerance;
+                  else
+                    return false;
+                }
+              evaluate_1d(d, s.cell[d], xi, s.first[d], l, shifted);
+            }
+          for (unsigned int v = 0; v < n_nodes; ++v)
+            {
+              unsigned int rest = v;
+              double       wd[dim];
+              for (unsigned int d = 0; d < dim; ++d, rest /= n_1d)
+                wd[d] = shifted.w1[d][rest % n_1d];
+              w[v] = product_except(wd, dim);
+            }
+          return true;
         }
     }
 
@@ -340,6 +407,43 @@ namespace mpm
     }
 
   private:
+    /// The 1D weights and derivatives of direction @p d into @p s for a
+    /// point at @p xi in cell @p cell_index, of the stencil whose first
+    /// node is @p first relative to the cell (the kernel's choice if
+    /// @p first is not given), folded at the grid's ends; returns the first
+    /// node.
+    inline int
+    evaluate_1d(const unsigned int d,
+                const unsigned int cell_index,
+                const double       xi,
+                const int          first_given,
+                const double       half_width,
+                Stencil           &s) const
+    {
+      double *w     = s.w1[d];
+      double *dw    = s.dw1[d];
+      int     first = first_given;
+      if constexpr (!Kernel::exact_surface_weights)
+        first = Kernel::evaluate(xi, half_width, w, dw);
+      else if (first == no_first)
+        first = Kernel::evaluate(xi, half_width, w, dw);
+      else
+        Kernel::evaluate_piece(xi, first, half_width, w, dw);
+      const int  j0 = static_cast<int>(cell_index) + first;
+      const auto n  = static_cast<int>(n_cells[d]);
+      if constexpr (n_1d >= 3)
+        {
+          if (j0 < 0)
+            fold_outside_node(w, dw, 0, 1, 2);
+          if (j0 + static_cast<int>(n_1d) - 1 > n)
+            fold_outside_node(w, dw, n_1d - 1, n_1d - 2, n_1d - 3);
+        }
+      for (unsigned int k = 0; k < n_1d; ++k)
+        dw[k] *= inv_h[d];
+      return first;
+    }
+    static constexpr int no_first = -1000;
+
     /// Fold the function of stencil entry @p out (a node beyond the grid)
     /// into the boundary node @p b and its inner neighbour @p c.
     static inline void

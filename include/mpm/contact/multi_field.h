@@ -89,15 +89,18 @@ namespace mpm
      * @p node points at the node's first field; field f's mass is at
      * node[f * stride] and its velocity at node[f * stride + slot];
      * @p data holds each field's sum_p m_p grad phi_I(x_p) (dim) and the
-     * number of its points whose domain holds the node (1). The momentum
-     * the rigid fields remove is added to @p rigid_impulse (one
-     * per rigid body, per unit dt: the caller scales it).
+     * number of its points whose domain holds the node (1). A deformable
+     * field lighter than @p min_mass (the integrator's small nodal mass)
+     * moves with the reference velocity. The momentum the rigid fields
+     * remove is added to @p rigid_impulse (one per rigid body, per unit
+     * dt: the caller scales it).
      */
     void
     correct_node(double                      *node,
                  const unsigned int           stride,
                  const unsigned int           slot,
                  const double                *data,
+                 const double                 min_mass,
                  std::vector<Tensor<1, dim>> &rigid_impulse) const;
 
     /// Rigid velocities only (a node with one field).
