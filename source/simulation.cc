@@ -13,6 +13,27 @@
 
 namespace mpm
 {
+  namespace
+  {
+    /// This process's resident file-backed pages in bytes (Linux: RssFile
+    /// of /proc/self/status; 0 where it is not known).
+    double
+    resident_file_bytes()
+    {
+      std::ifstream status("/proc/self/status");
+      std::string   key;
+      while (status >> key)
+        if (key == "RssFile:")
+          {
+            double kilobytes = 0;
+            status >> kilobytes;
+            return kilobytes * 1024.;
+          }
+      return 0;
+    }
+  } // namespace
+
+
   void
   declare_scene_parameters(ParameterHandler  &prm,
                            const unsigned int n_bodies,
@@ -151,6 +172,7 @@ namespace mpm
       Utilities::System::MemoryStats memory;
       Utilities::System::get_memory_stats(memory);
       baseline_bytes = Utilities::MPI::sum(double(memory.VmRSS) * 1024., comm);
+      library_bytes  = resident_file_bytes();
     }
     std::optional<TimerOutput::Scope> setup_scope;
     setup_scope.emplace(*timer, "setup: grid");
@@ -580,11 +602,13 @@ namespace mpm
 
   template <int dim>
   double
-  Simulation<dim>::peak_memory_bytes() const
+  Simulation<dim>::peak_memory_bytes(const bool private_only) const
   {
     Utilities::System::MemoryStats memory; // of this rank
     Utilities::System::get_memory_stats(memory);
-    return Utilities::MPI::sum(double(memory.VmHWM) * 1024., comm);
+    return Utilities::MPI::sum(double(memory.VmHWM) * 1024. -
+                                 (private_only ? library_bytes : 0.),
+                               comm);
   }
 
 
@@ -605,6 +629,7 @@ namespace mpm
     const double n_points =
       std::max<double>(points->handler().n_global_particles(), 1);
     const double bytes_per_particle = peak_memory_bytes() / n_points;
+    const double private_bytes      = peak_memory_bytes(true);
     // The nodes whose values cross rank boundaries (summed over ranks):
     // what the nodal exchanges of a step send, per component.
     const double ghost_nodes =
@@ -635,6 +660,8 @@ namespace mpm
         f << "peak bytes per particle after setup,"
           << setup_peak_bytes / n_points << ",\n";
         f << "baseline bytes per particle," << baseline_bytes / n_points
+          << ",\n";
+        f << "peak private bytes per particle," << private_bytes / n_points
           << ",\n";
         f << "ghost nodes," << ghost_nodes << ",\n";
       }

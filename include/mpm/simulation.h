@@ -65,8 +65,11 @@ namespace mpm
     void
     balance_load();
     /// Peak resident memory so far, summed over the ranks (collective).
+    /// With @p private_only, less each rank's library pages at the start:
+    /// the memory the run itself holds, an upper bound (library pages only
+    /// grow as more code runs).
     double
-    peak_memory_bytes() const;
+    peak_memory_bytes(const bool private_only = false) const;
 
     MPI_Comm                              comm;
     ConditionalOStream                    pcout;
@@ -105,6 +108,9 @@ namespace mpm
     /// Resident memory of all ranks before the scene's data (the program's
     /// libraries and MPI), in bytes.
     double baseline_bytes = 0;
+    /// Of that, this rank's file-backed pages (the code of the program and
+    /// its libraries, which all ranks of a node share in the page cache).
+    double library_bytes = 0;
     /// Repartitions during the run, and the largest imbalance any step
     /// ran with (after its repartition, if it had one).
     unsigned int n_rebalances       = 0;
