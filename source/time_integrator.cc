@@ -1247,14 +1247,26 @@ namespace mpm
                                          const unsigned int stride,
                                          const unsigned int slot) const
   {
-    return gradient_of_heavy_nodes<dim>(
-      s,
-      u,
-      stride,
-      slot,
-      velocity_at_point<dim>(s, u, stride, slot),
-      s.gradients,
-      min_nodal_mass);
+    Tensor<1, dim> v_point;
+    for (unsigned int v = 0; v < s.weights.size(); ++v)
+      v_point +=
+        s.weights[v] * Fields::vector<dim>(u + stride * s.nodes[v] + slot);
+    // Sum of (v_I - v_point) grad phi_I: equal to sum v_I grad phi_I, since
+    // the gradients sum to zero, but light nodes can now be left out. They
+    // must be: a node that only the edge of a point's support reaches has
+    // a tiny mass phi m_p but a full force V sigma grad phi (the linear
+    // basis' gradient does not vanish with phi), so its velocity grows as
+    // 1 / phi; in the point's velocity it counts with phi, here with
+    // grad phi.
+    Tensor<2, dim> L;
+    for (unsigned int v = 0; v < s.weights.size(); ++v)
+      {
+        const double *node = u + stride * s.nodes[v];
+        if (node[node_mass] > min_nodal_mass)
+          L += outer_product(Fields::vector<dim>(node + slot) - v_point,
+                             s.gradients[v]);
+      }
+    return L;
   }
 
 

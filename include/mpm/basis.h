@@ -111,17 +111,13 @@ namespace mpm
       evaluate(const double xi, const double, double *w, double *dw)
       {
         const int first = xi < 0.5 ? -1 : 0;
-        evaluate_piece(xi, first, 0, w, dw);
+        evaluate_piece(xi, first, w, dw);
         return first;
       }
 
       /// The functions of the nodes first, first + 1, first + 2 at @p xi.
       static inline void
-      evaluate_piece(const double xi,
-                     const int    first,
-                     const double,
-                     double *w,
-                     double *dw)
+      evaluate_piece(const double xi, const int first, double *w, double *dw)
       {
         const double r = xi - first; // distance to the first node
         const double a = 1.5 - r, b = r - 1., c = r - 0.5; // a, c in [0, 1]
@@ -135,7 +131,7 @@ namespace mpm
 
       /// Whether those three functions are one polynomial piece each there.
       static inline bool
-      in_piece(const double xi, const int first, const double)
+      in_piece(const double xi, const int first)
       {
         return xi >= first + 0.5 && xi <= first + 1.5;
       }
@@ -213,9 +209,8 @@ namespace mpm
       double dw1[dim][n_1d];
       int    first[dim];
       double xi[dim];
-      /// The cell and the domain half-width (GIMP) it was evaluated with.
+      /// The cell it was evaluated in.
       std::array<unsigned int, dim> cell;
-      double                        half_width[dim];
       /// Cell size (for node offsets).
       Tensor<1, dim> h;
 
@@ -265,11 +260,14 @@ namespace mpm
       s.cell    = cell;
       for (unsigned int d = 0; d < dim; ++d)
         {
-          const int first =
-            evaluate_1d(d, cell[d], xi[d], no_first, half_width[d], s);
-          s.first[d]      = first;
-          s.xi[d]         = xi[d];
-          s.half_width[d] = half_width[d];
+          double   *w     = s.w1[d];
+          double   *dw    = s.dw1[d];
+          const int first = Kernel::evaluate(xi[d], half_width[d], w, dw);
+          fold_at_grid_ends(d, static_cast<int>(cell[d]) + first, w, dw);
+          for (unsigned int k = 0; k < n_1d; ++k)
+            dw[k] *= inv_h[d];
+          s.first[d] = first;
+          s.xi[d]    = xi[d];
           s.pattern |= (first + 1) << d;
         }
 
@@ -308,28 +306,31 @@ namespace mpm
         return false;
       else
         {
-          Stencil shifted;
+          double w1[dim][n_1d], dw1[n_1d];
           for (unsigned int d = 0; d < dim; ++d)
             {
-              double       xi = s.xi[d] + offset[d] * inv_h[d];
-              const double l  = s.half_width[d];
-              if (!Kernel::in_piece(xi, s.first[d], l))
+              double xi = s.xi[d] + offset[d] * inv_h[d];
+              if (!Kernel::in_piece(xi, s.first[d]))
                 {
-                  if (Kernel::in_piece(xi - tolerance, s.first[d], l))
+                  if (Kernel::in_piece(xi - tolerance, s.first[d]))
                     xi -= tolerance;
-                  else if (Kernel::in_piece(xi + tolerance, s.first[d], l))
+                  else if (Kernel::in_piece(xi + tolerance, s.first[d]))
                     xi += tolerance;
                   else
                     return false;
                 }
-              evaluate_1d(d, s.cell[d], xi, s.first[d], l, shifted);
+              Kernel::evaluate_piece(xi, s.first[d], w1[d], dw1);
+              fold_at_grid_ends(d,
+                                static_cast<int>(s.cell[d]) + s.first[d],
+                                w1[d],
+                                dw1);
             }
           for (unsigned int v = 0; v < n_nodes; ++v)
             {
               unsigned int rest = v;
               double       wd[dim];
               for (unsigned int d = 0; d < dim; ++d, rest /= n_1d)
-                wd[d] = shifted.w1[d][rest % n_1d];
+                wd[d] = w1[d][rest % n_1d];
               w[v] = product_except(wd, dim);
             }
           return true;
@@ -407,42 +408,24 @@ namespace mpm
     }
 
   private:
-    /// The 1D weights and derivatives of direction @p d into @p s for a
-    /// point at @p xi in cell @p cell_index, of the stencil whose first
-    /// node is @p first relative to the cell (the kernel's choice if
-    /// @p first is not given), folded at the grid's ends; returns the first
-    /// node.
-    inline int
-    evaluate_1d(const unsigned int d,
-                const unsigned int cell_index,
-                const double       xi,
-                const int          first_given,
-                const double       half_width,
-                Stencil           &s) const
+    /// Fold the 1D functions @p w, @p dw of direction @p d whose first node
+    /// is @p first_node (the grid's node index, possibly -1) at the grid's
+    /// ends (see the class documentation).
+    inline void
+    fold_at_grid_ends(const unsigned int d,
+                      const int          first_node,
+                      double            *w,
+                      double            *dw) const
     {
-      double *w     = s.w1[d];
-      double *dw    = s.dw1[d];
-      int     first = first_given;
-      if constexpr (!Kernel::exact_surface_weights)
-        first = Kernel::evaluate(xi, half_width, w, dw);
-      else if (first == no_first)
-        first = Kernel::evaluate(xi, half_width, w, dw);
-      else
-        Kernel::evaluate_piece(xi, first, half_width, w, dw);
-      const int  j0 = static_cast<int>(cell_index) + first;
-      const auto n  = static_cast<int>(n_cells[d]);
       if constexpr (n_1d >= 3)
         {
-          if (j0 < 0)
+          if (first_node < 0)
             fold_outside_node(w, dw, 0, 1, 2);
-          if (j0 + static_cast<int>(n_1d) - 1 > n)
+          if (first_node + static_cast<int>(n_1d) - 1 >
+              static_cast<int>(n_cells[d]))
             fold_outside_node(w, dw, n_1d - 1, n_1d - 2, n_1d - 3);
         }
-      for (unsigned int k = 0; k < n_1d; ++k)
-        dw[k] *= inv_h[d];
-      return first;
     }
-    static constexpr int no_first = -1000;
 
     /// Fold the function of stencil entry @p out (a node beyond the grid)
     /// into the boundary node @p b and its inner neighbour @p c.

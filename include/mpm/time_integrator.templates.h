@@ -11,56 +11,6 @@
 namespace mpm
 {
   /**
-   * sum_I (v_I - v_p) (x) a_I over the stencil's nodes heavier than
-   * @p min_mass, with v_I the nodal velocities at @p slot of the
-   * interleaved array @p u (node stride @p stride, the nodal mass first)
-   * and v_p = sum_I phi_I v_I the grid velocity at the point. The a_I sum
-   * to zero (the basis gradients), so with every node this is
-   * sum_I v_I (x) a_I; a light node is left out. It must be:
-   * a node that only the edge of a point's support reaches has a tiny
-   * mass phi m_p but a full force V sigma grad phi (the gradient of the
-   * linear basis does not vanish with phi), so its velocity grows as
-   * 1 / phi. In the point's velocity that node counts with phi (bounded);
-   * in a gradient it would count with grad phi (unbounded).
-   */
-  template <int dim, typename Stencil, typename Vectors>
-  inline DEAL_II_ALWAYS_INLINE Tensor<2, dim>
-                               gradient_of_heavy_nodes(const Stencil        &s,
-                                                       const double         *u,
-                                                       const unsigned int    stride,
-                                                       const unsigned int    slot,
-                                                       const Tensor<1, dim> &v_point,
-                                                       const Vectors        &a,
-                                                       const double          min_mass)
-  {
-    Tensor<2, dim> L;
-    for (unsigned int v = 0; v < s.weights.size(); ++v)
-      {
-        const double *node = u + stride * s.nodes[v];
-        if (node[0] > min_mass)
-          L += outer_product(Fields::vector<dim>(node + slot) - v_point, a[v]);
-      }
-    return L;
-  }
-
-
-  /// The grid velocity sum_I phi_I v_I at a point.
-  template <int dim, typename Stencil>
-  inline DEAL_II_ALWAYS_INLINE Tensor<1, dim>
-                               velocity_at_point(const Stencil     &s,
-                                                 const double      *u,
-                                                 const unsigned int stride,
-                                                 const unsigned int slot)
-  {
-    Tensor<1, dim> v_point;
-    for (unsigned int v = 0; v < s.weights.size(); ++v)
-      v_point +=
-        s.weights[v] * Fields::vector<dim>(u + stride * s.nodes[v] + slot);
-    return v_point;
-  }
-
-
-  /**
    * APIC's C_p = sum_I v_I (x) a_I (Jiang et al. 2015) from the nodal
    * velocities at @p slot of the interleaved array @p u (node stride
    * @p stride); @p affine is scratch for the basis' affine weights a_I.

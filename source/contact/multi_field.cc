@@ -161,8 +161,9 @@ namespace mpm
     // is not needed, and it would hold a rolling disk where its surface
     // lifts off.
     bool light = false;
-    for (unsigned int f = 0; f < field_count && rigid < 0; ++f)
-      light = light || (takes_part(f) && node[f * stride] < min_mass);
+    if (rigid < 0)
+      for (unsigned int f = 0; f < field_count; ++f)
+        light = light || (takes_part(f) && node[f * stride] < min_mass);
     for (unsigned int f = 0; f < field_count; ++f)
       {
         double *field = node + f * stride;
