@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -895,13 +896,17 @@ namespace mpm
     using iterator =
       typename Particles::ParticleHandler<dim>::particle_iterator;
     // Points to delete from their old place, in visiting order: those that
-    // moved to another cell of this rank (a copy was inserted there) and
-    // those that left the grid.
+    // moved to another cell of this rank (a copy was inserted there), those
+    // that left the grid, and those that moved to a neighbour rank's tile
+    // (leaving[i]; their data were packed for it).
     std::vector<iterator> removals;
+    std::vector<bool>     leaving;
     std::string           failure;
     types::particle_index n_lost   = 0;
-    bool                  off_rank = false;
+    bool                  far_away = false;
     std::vector<double>   buffer(fields.n_properties);
+    // Per neighbour rank: location, id and properties of each point sent.
+    std::map<unsigned int, std::vector<double>> sent;
 
     for (const unsigned int here : grid.locally_owned_tiles())
       {
@@ -934,6 +939,7 @@ namespace mpm
                     continue;
                   }
                 removals.push_back(p);
+                leaving.push_back(false);
                 ++n_lost;
                 continue;
               }
@@ -957,47 +963,60 @@ namespace mpm
                                           grid.tile(there),
                                           make_array_view(buffer));
                 removals.push_back(p);
+                leaving.push_back(false);
                 ++moved_since_sort;
               }
+            else if (grid.tile(there).state() == IteratorState::valid &&
+                     grid.tile(there)->is_ghost())
+              {
+                auto &to = sent[grid.tile(there)->subdomain_id()];
+                for (unsigned int d = 0; d < dim; ++d)
+                  to.push_back(p->get_location()[d]);
+                to.push_back(p->get_id()); // exact: ids are below 2^53
+                const auto src = p->get_properties();
+                to.insert(to.end(), src.begin(), src.end());
+                removals.push_back(p);
+                leaving.push_back(true);
+              }
             else
-              off_rank = true;
+              far_away = true; // beyond the ghost layer: deal.II finds it
           }
       }
 
     raise_if_any_failed(failure, comm);
 
-    // Removing in reverse visiting order removes the highest index of each
-    // cell first, so the iterators still to be used stay valid.
-    for (auto p = removals.rbegin(); p != removals.rend(); ++p)
-      particles.remove_particle(*p);
-
-    // A point moved to another cell is stored where the property pool had
-    // room, far from its new neighbours; as points flow, every loop walks
-    // memory at random (a settling block at nu = 0.35 ran at 2.3-2.9x the
-    // cost per point-step of one at nu = 0). deal.II's collective sort also
-    // puts the pool back in cell order, so it runs once the moves since
-    // the last one pass a fraction of the points (doc/performance.md).
-    const bool disordered =
-      moved_since_sort >
-      memory_order_tolerance * particles.n_locally_owned_particles();
-
-    // Both calls below are collective (they count particles over all
-    // ranks), so every rank must take the same branch.
-    // A move within the rank changes no count, and deal.II's count of
-    // them walks every point: it runs only when points were lost (a
-    // checkpoint updates the counts before it packs the points).
-    int changes = (off_rank || disordered ? 1 : 0) | (n_lost == 0 ? 0 : 2);
+    // The calls below are collective (they count or exchange points over
+    // all ranks), so every rank must take the same branch. A point that
+    // went further than a neighbour's tile (a step longer than a tile:
+    // not with a CFL number below 1) needs deal.II's sort, which finds
+    // its rank but copies all the points' data; points that went to a
+    // neighbour are sent there. A move within the rank changes no count,
+    // and deal.II's count of them walks every point: it runs only when
+    // points were lost (a checkpoint updates the counts before it packs
+    // the points).
+    int changes =
+      (far_away ? 1 : 0) | (n_lost == 0 ? 0 : 2) | (sent.empty() ? 0 : 4);
     if (Utilities::MPI::n_mpi_processes(comm) > 1)
       MPI_Allreduce(MPI_IN_PLACE, &changes, 1, MPI_INT, MPI_BOR, comm);
-    if (changes & 1)
+    const bool full_sort = changes & 1;
+    if (!full_sort && (changes & 4))
+      receive_points(Utilities::MPI::some_to_some(comm, sent));
+
+    // Removing in reverse visiting order removes the highest index of each
+    // cell first, so the iterators still to be used stay valid. Before a
+    // full sort, the points sent stay: the sort moves them.
+    for (int i = static_cast<int>(removals.size()) - 1; i >= 0; --i)
+      if (!(full_sort && leaving[i]))
+        particles.remove_particle(removals[i]);
+
+    if (full_sort)
       {
         particles.sort_particles_into_subdomains_and_cells();
         ++n_full_sorts;
         moved_since_sort = 0;
         // deal.II's sort recomputes every reference location by its own
         // mapping, which can differ from locate() in the last bit; the
-        // bases read it, so a run would depend on when it sorted (a
-        // restart resets the count above).
+        // bases read it, so a run would depend on when it sorted.
         for (auto &point : particles)
           {
             // (Every point is in the grid here: deal.II sorted it.)
@@ -1010,7 +1029,156 @@ namespace mpm
     else if (changes & 2)
       particles.update_cached_numbers();
 
+    // A point moved to another tile is stored where the property pool had
+    // room, far from its new neighbours; as points flow, every loop walks
+    // memory at random (a settling block at nu = 0.35 ran at 2.3-2.9x the
+    // cost per point-step of one at nu = 0). So once the moves since the
+    // last re-pack pass a fraction of the points, their data are put back
+    // in visiting order (doc/performance.md). deal.II's sort (above) does
+    // that too, but by a copy of all the points' data.
+    if (moved_since_sort >
+        memory_order_tolerance * particles.n_locally_owned_particles())
+      {
+        restore_memory_order();
+        ++n_repacks;
+        moved_since_sort = 0;
+      }
+
     return Utilities::MPI::sum(n_lost, comm);
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::receive_points(
+    const std::map<unsigned int, std::vector<double>> &received)
+  {
+    const unsigned int  n = dim + 1 + fields.n_properties;
+    std::vector<double> buffer(fields.n_properties);
+    std::string         failure;
+    // In the order of the sending ranks, each in its visiting order: the
+    // same points arrive in the same order whenever the run is repeated.
+    for (const auto &[rank, data] : received)
+      for (std::size_t k = 0; k + n <= data.size(); k += n)
+        {
+          Point<dim> x;
+          for (unsigned int d = 0; d < dim; ++d)
+            x[d] = data[k + d];
+          typename BackgroundGrid<dim>::CellCoordinates cell;
+          Point<dim>                                    xi;
+          const bool  inside = grid.locate(x, cell, xi);
+          const auto &tile   = grid.tile(grid.tile_of(cell));
+          if (!inside || tile.state() != IteratorState::valid ||
+              !tile->is_locally_owned())
+            {
+              // Rank 'rank' saw this rank own the point's tile: the
+              // partitions disagree, which is a bug, not a user's error.
+              std::ostringstream s;
+              s << "internal error: rank " << rank << " sent a point at (" << x
+                << ") to rank " << Utilities::MPI::this_mpi_process(comm)
+                << ", which does not own its tile";
+              failure = s.str();
+              continue;
+            }
+          std::copy(data.begin() + k + dim + 1,
+                    data.begin() + k + n,
+                    buffer.begin());
+          particles.insert_particle(x,
+                                    grid.tile_reference(cell, xi),
+                                    static_cast<types::particle_index>(
+                                      data[k + dim]),
+                                    tile,
+                                    make_array_view(buffer));
+          ++moved_since_sort;
+        }
+    raise_if_any_failed(failure, comm);
+  }
+
+
+  template <int dim>
+  types::particle_index
+  MaterialPoints<dim>::restore_memory_order()
+  {
+    using Handle           = typename Particles::PropertyPool<dim>::Handle;
+    constexpr Handle none  = std::numeric_limits<Handle>::max();
+    const auto      &tiles = grid.locally_owned_tiles();
+
+    // The slot of every point in visiting order (its handle, which deal.II
+    // gives as its local index), and where each tile's points begin.
+    if (particles.n_locally_owned_particles() == 0)
+      return 0;
+    std::vector<Handle>       slot_of;
+    std::vector<unsigned int> tile_begin(tiles.size() + 1, 0);
+    slot_of.reserve(particles.n_locally_owned_particles());
+    Handle n_slots = 0;
+    for (unsigned int q = 0; q < tiles.size(); ++q)
+      {
+        tile_begin[q] = slot_of.size();
+        for (const auto &p : particles.particles_in_cell(grid.tile(tiles[q])))
+          {
+            slot_of.push_back(p.get_local_index());
+            n_slots = std::max<Handle>(n_slots, slot_of.back() + 1);
+          }
+      }
+    tile_begin.back() = slot_of.size();
+
+    // Point j belongs in the j-th smallest of these slots. wanted_by[s] is
+    // the point that belongs in slot s (free slots, and any other rank's
+    // ghosts, are none and stay where they are).
+    std::vector<Handle> wanted_by(n_slots, none);
+    for (const Handle s : slot_of)
+      wanted_by[s] = 0;
+    for (Handle s = 0, j = 0; s < n_slots; ++s)
+      if (wanted_by[s] != none)
+        wanted_by[s] = j++;
+
+    // Moving a point: insert a copy of it in its tile, which takes the
+    // pool's last freed slot, then remove it, which frees its old slot and
+    // puts the copy (the tile's last point) in its place in the tile.
+    std::vector<double> buffer(fields.n_properties);
+    auto                move = [&](const unsigned int j) {
+      const unsigned int q =
+        std::upper_bound(tile_begin.begin(), tile_begin.end(), j) -
+        tile_begin.begin() - 1;
+      const auto tile = grid.tile(tiles[q]);
+      auto       p = particles.particles_in_cell(tile).begin();
+      std::advance(p, j - tile_begin[q]);
+      // Copies: the arguments must not point into the pool it writes.
+      const auto properties = p->get_properties();
+      std::copy(properties.begin(), properties.end(), buffer.begin());
+      const Point<dim> x  = p->get_location();
+      const Point<dim> xi = p->get_reference_location();
+      particles.insert_particle(
+        x, xi, p->get_id(), tile, make_array_view(buffer));
+      particles.remove_particle(p);
+    };
+
+    // Each cycle of the permutation goes through one free slot: its first
+    // point moves there, each point then into the slot the previous one
+    // freed, and the first into the last freed slot, which frees the
+    // spare again. A point inserted and removed at once makes sure there
+    // is one (the pool's last freed slot, or a new one at its end).
+    particles.remove_particle(particles.insert_particle(
+      Point<dim>(), Point<dim>(), 0, grid.tile(tiles[0]), {}));
+    types::particle_index n_moved = 0;
+    std::vector<bool>     done(slot_of.size(), false);
+    for (unsigned int first = 0; first < slot_of.size(); ++first)
+      {
+        if (done[first] || wanted_by[slot_of[first]] == first)
+          continue;
+        move(first); // to the spare slot
+        for (Handle freed = slot_of[first];;)
+          {
+            const Handle next = wanted_by[freed];
+            done[next]        = true;
+            move(next);
+            ++n_moved;
+            if (next == first)
+              break;
+            freed = slot_of[next];
+          }
+      }
+    return n_moved;
   }
 
 

@@ -654,6 +654,7 @@ namespace mpm
         f << "time steps," << integrator->step_number() << ",\n";
         f << "ranks," << n_ranks << ",\n";
         f << "collective sorts," << points->n_collective_sorts() << ",\n";
+        f << "memory re-packs (rank 0)," << points->n_memory_repacks() << ",\n";
         f << "peak bytes per particle," << bytes_per_particle << ",\n";
         f << "rebalances," << n_rebalances << ",\n";
         f << "largest imbalance," << largest_imbalance << ",\n";

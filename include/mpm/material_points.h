@@ -219,8 +219,9 @@ namespace mpm
     /**
      * Put points back in their tiles after their positions changed: move
      * those that left their tile (a point that changes cell within its
-     * tile stays where it is stored), and only if some left this rank's
-     * tiles do the collective deal.II sort. Returns the number of points
+     * tile stays where it is stored), send those that reached a neighbour
+     * rank's tile there, and only if one went further run deal.II's
+     * collective sort. Returns the number of points
      * removed because they left the grid (policy remove); with policy stop it
      * throws RunError naming the first such point.
      */
@@ -228,11 +229,29 @@ namespace mpm
     relocate(const OutOfGridPolicy policy);
 
     /// How often relocation ran deal.II's collective sort (a point reached
-    /// another rank's cell, or the points' data lost their cell order).
+    /// another rank's cell).
     unsigned int
     n_collective_sorts() const
     {
       return n_full_sorts;
+    }
+
+    /**
+     * Put the points' data back in the order the step's loops visit them
+     * (for_each_by_cell), in place: each point that is out of order moves
+     * once, through one free slot of deal.II's property pool, and keeps
+     * its place in its tile, so no sum changes by a bit. Local to the
+     * rank. Returns the number of points moved. relocate() calls it once
+     * the points moved since the last re-pack pass a fraction of them.
+     */
+    types::particle_index
+    restore_memory_order();
+
+    /// How often relocation re-packed the points' data (on this rank).
+    unsigned int
+    n_memory_repacks() const
+    {
+      return n_repacks;
     }
 
     /// The box around each body's points, over all ranks (collective).
@@ -267,6 +286,10 @@ namespace mpm
     displace(const FunctionParser<dim> &displacement,
              const Point<dim>          &X,
              double                    *properties);
+    /// Insert the points other ranks sent to this one in relocate():
+    /// per rank, location, id and properties of each.
+    void
+    receive_points(const std::map<unsigned int, std::vector<double>> &received);
     std::string
     describe_leaving_point(
       const typename Particles::ParticleHandler<dim>::particle_iterator &p)
@@ -284,9 +307,10 @@ namespace mpm
     Particles::ParticleHandler<dim>        particles;
     double                                 minimum_mass;
     unsigned int                           n_full_sorts = 0;
-    /// Points moved to another cell of this rank since the last collective
-    /// sort, and the fraction of the points beyond which the sort runs to
-    /// put their data back in cell order (see relocate()).
+    unsigned int                           n_repacks    = 0;
+    /// Points moved to another tile of this rank since their data were
+    /// last put in visiting order, and the fraction of the points beyond
+    /// which relocate() does it again.
     types::particle_index   moved_since_sort       = 0;
     static constexpr double memory_order_tolerance = 0.05;
     std::string             state_failure;
