@@ -611,14 +611,18 @@ namespace mpm
 
     // The points go straight into deal.II's storage, reserved from a count
     // first: a copy of them, or a pool that grows by doubling, would set
-    // the run's peak memory.
+    // the run's peak memory. The reserve has room for a quarter more: a
+    // point that changes tile, or arrives from another rank, is copied
+    // before its old slot is freed, and a pool at its capacity would
+    // double (at its peak holding the old and the new array). Pages that
+    // are reserved but never written take no memory.
     types::particle_index n_expected = 0;
     for (const unsigned int tile : grid.locally_owned_tiles())
       grid.for_each_cell_of_tile(tile, [&](const auto &, const Point<dim> &c) {
         for (const auto &body : body_list)
           n_expected += body.count_seeds(c);
       });
-    particles.reserve(n_expected);
+    particles.reserve(n_expected + n_expected / 4);
     types::particle_index n_local = 0;
 
     std::vector<types::particle_index> count(body_list.size(), 0);
@@ -893,27 +897,21 @@ namespace mpm
   types::particle_index
   MaterialPoints<dim>::relocate(const OutOfGridPolicy policy)
   {
-    using iterator =
-      typename Particles::ParticleHandler<dim>::particle_iterator;
-    // Points to delete from their old place, in visiting order: those that
-    // moved to another cell of this rank (a copy was inserted there), those
-    // that left the grid, and those that moved to a neighbour rank's tile
-    // (leaving[i]; their data were packed for it).
-    std::vector<iterator> removals;
-    std::vector<bool>     leaving;
+    // Points to delete from their old place, in visiting order, with their
+    // tiles: those that moved to another tile of this rank (their data are
+    // in 'arriving'), those that left the grid, and those that moved to a
+    // neighbour rank's tile (leaving[i]; their data were packed for it).
+    Moves                 moves;
     std::string           failure;
     types::particle_index n_lost   = 0;
     bool                  far_away = false;
-    std::vector<double>   buffer(fields.n_properties);
     // Per neighbour rank: location, id and properties of each point sent.
     std::map<unsigned int, std::vector<double>> sent;
 
     for (const unsigned int here : grid.locally_owned_tiles())
       {
-        const auto &tile = grid.tile(here);
-        // Count, not end(): inserting into a previously empty tile adds a
-        // container entry that end() of this range could then point to.
-        const unsigned int n = particles.n_particles_in_cell(tile);
+        const auto        &tile = grid.tile(here);
+        const unsigned int n    = particles.n_particles_in_cell(tile);
         if (n == 0)
           continue;
         auto p = particles.particles_in_cell(tile).begin();
@@ -938,8 +936,7 @@ namespace mpm
                                            "CFL number, MUSL, or damping)";
                     continue;
                   }
-                removals.push_back(p);
-                leaving.push_back(false);
+                moves.leave(p, here, false);
                 ++n_lost;
                 continue;
               }
@@ -952,19 +949,12 @@ namespace mpm
             if (grid.tile(there).state() == IteratorState::valid &&
                 grid.tile(there)->is_locally_owned())
               {
-                // Copy first: the location and properties live in deal.II's
-                // property pool, which inserting may reallocate.
-                const auto       src = p->get_properties();
-                const Point<dim> x   = p->get_location();
-                std::copy(src.begin(), src.end(), buffer.begin());
-                particles.insert_particle(x,
-                                          grid.tile_reference(cell, xi),
-                                          p->get_id(),
-                                          grid.tile(there),
-                                          make_array_view(buffer));
-                removals.push_back(p);
-                leaving.push_back(false);
-                ++moved_since_sort;
+                moves.arrive(there,
+                             p->get_location(),
+                             grid.tile_reference(cell, xi),
+                             p->get_id(),
+                             p->get_properties());
+                moves.leave(p, here, false);
               }
             else if (grid.tile(there).state() == IteratorState::valid &&
                      grid.tile(there)->is_ghost())
@@ -975,8 +965,7 @@ namespace mpm
                 to.push_back(p->get_id()); // exact: ids are below 2^53
                 const auto src = p->get_properties();
                 to.insert(to.end(), src.begin(), src.end());
-                removals.push_back(p);
-                leaving.push_back(true);
+                moves.leave(p, here, true);
               }
             else
               far_away = true; // beyond the ghost layer: deal.II finds it
@@ -1000,14 +989,9 @@ namespace mpm
       MPI_Allreduce(MPI_IN_PLACE, &changes, 1, MPI_INT, MPI_BOR, comm);
     const bool full_sort = changes & 1;
     if (!full_sort && (changes & 4))
-      receive_points(Utilities::MPI::some_to_some(comm, sent));
-
-    // Removing in reverse visiting order removes the highest index of each
-    // cell first, so the iterators still to be used stay valid. Before a
-    // full sort, the points sent stay: the sort moves them.
-    for (int i = static_cast<int>(removals.size()) - 1; i >= 0; --i)
-      if (!(full_sort && leaving[i]))
-        particles.remove_particle(removals[i]);
+      receive_points(Utilities::MPI::some_to_some(comm, sent), moves);
+    // Before a full sort, the points sent stay: the sort moves them.
+    settle(moves, full_sort);
 
     if (full_sort)
       {
@@ -1050,12 +1034,42 @@ namespace mpm
 
   template <int dim>
   void
-  MaterialPoints<dim>::receive_points(
-    const std::map<unsigned int, std::vector<double>> &received)
+  MaterialPoints<dim>::Moves::leave(const iterator    &p,
+                                    const unsigned int tile,
+                                    const bool         to_other_rank)
   {
-    const unsigned int  n = dim + 1 + fields.n_properties;
-    std::vector<double> buffer(fields.n_properties);
-    std::string         failure;
+    leavers.push_back(p);
+    leaver_tile.push_back(tile);
+    to_rank.push_back(to_other_rank);
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::Moves::arrive(const unsigned int             tile,
+                                     const Point<dim>              &x,
+                                     const Point<dim>              &xi,
+                                     const types::particle_index    id,
+                                     const ArrayView<const double> &properties)
+  {
+    arrivals.emplace_back(tile, data.size());
+    for (unsigned int d = 0; d < dim; ++d)
+      data.push_back(x[d]);
+    for (unsigned int d = 0; d < dim; ++d)
+      data.push_back(xi[d]);
+    data.push_back(id);
+    data.insert(data.end(), properties.begin(), properties.end());
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::receive_points(
+    const std::map<unsigned int, std::vector<double>> &received,
+    Moves                                             &moves) const
+  {
+    const unsigned int n = dim + 1 + fields.n_properties;
+    std::string        failure;
     // In the order of the sending ranks, each in its visiting order: the
     // same points arrive in the same order whenever the run is repeated.
     for (const auto &[rank, data] : received)
@@ -1066,10 +1080,10 @@ namespace mpm
             x[d] = data[k + d];
           typename BackgroundGrid<dim>::CellCoordinates cell;
           Point<dim>                                    xi;
-          const bool  inside = grid.locate(x, cell, xi);
-          const auto &tile   = grid.tile(grid.tile_of(cell));
-          if (!inside || tile.state() != IteratorState::valid ||
-              !tile->is_locally_owned())
+          const bool         inside = grid.locate(x, cell, xi);
+          const unsigned int tile   = grid.tile_of(cell);
+          if (!inside || grid.tile(tile).state() != IteratorState::valid ||
+              !grid.tile(tile)->is_locally_owned())
             {
               // Rank 'rank' saw this rank own the point's tile: the
               // partitions disagree, which is a bug, not a user's error.
@@ -1080,18 +1094,112 @@ namespace mpm
               failure = s.str();
               continue;
             }
-          std::copy(data.begin() + k + dim + 1,
-                    data.begin() + k + n,
-                    buffer.begin());
-          particles.insert_particle(x,
-                                    grid.tile_reference(cell, xi),
-                                    static_cast<types::particle_index>(
-                                      data[k + dim]),
-                                    tile,
-                                    make_array_view(buffer));
-          ++moved_since_sort;
+          moves.arrive(tile,
+                       x,
+                       grid.tile_reference(cell, xi),
+                       static_cast<types::particle_index>(data[k + dim]),
+                       make_array_view(data.data() + k + dim + 1,
+                                       data.data() + k + n));
         }
     raise_if_any_failed(failure, comm);
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::settle(Moves &moves, const bool keep_sent)
+  {
+    // The result must not depend on where a point's data are stored, only
+    // on its place in its tile, which is as if each tile got its arrivals
+    // appended in order and then lost its leavers from the last: a leaver
+    // takes the last arrival still appended. So the last arrivals are
+    // written over the last leavers' data, in their slots (which keeps a
+    // flow's data near their neighbours'), the remaining arrivals are
+    // appended, and the remaining leavers removed from the last.
+    const unsigned int np      = fields.n_properties;
+    auto               by_tile = [](const auto &a, const auto &b) {
+      return a.first < b.first;
+    };
+    std::stable_sort(moves.arrivals.begin(), moves.arrivals.end(), by_tile);
+    // Tiles with leavers, in visiting order, each with its range of them.
+    std::vector<std::pair<unsigned int, std::pair<std::size_t, std::size_t>>>
+      leaving;
+    for (std::size_t i = 0; i < moves.leavers.size(); ++i)
+      if (!(keep_sent && moves.to_rank[i]))
+        {
+          if (leaving.empty() || leaving.back().first != moves.leaver_tile[i])
+            leaving.push_back({moves.leaver_tile[i], {i, i}});
+          leaving.back().second.second = i + 1;
+        }
+    std::stable_sort(leaving.begin(), leaving.end(), by_tile);
+
+    auto next_leaving = leaving.begin();
+    for (auto a = moves.arrivals.begin();
+         a != moves.arrivals.end() || next_leaving != leaving.end();)
+      {
+        // The next tile (by index) with arrivals or leavers.
+        const unsigned int tile =
+          a == moves.arrivals.end()
+            ? next_leaving->first
+            : (next_leaving == leaving.end()
+                 ? a->first
+                 : std::min(a->first, next_leaving->first));
+        auto a_end = a;
+        while (a_end != moves.arrivals.end() && a_end->first == tile)
+          ++a_end;
+        std::vector<std::size_t> out; // leavers of the tile, in order
+        if (next_leaving != leaving.end() && next_leaving->first == tile)
+          {
+            for (std::size_t i = next_leaving->second.first;
+                 i < next_leaving->second.second;
+                 ++i)
+              if (!(keep_sent && moves.to_rank[i]))
+                out.push_back(i);
+            ++next_leaving;
+          }
+        std::size_t n_in = a_end - a, n_out = out.size();
+        // Last arrival over last leaver.
+        while (n_in > 0 && n_out > 0)
+          {
+            const double *q = moves.data.data() + (a + n_in - 1)->second;
+            auto         &p = moves.leavers[out[n_out - 1]];
+            Point<dim>    x, xi;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                x[d]  = q[d];
+                xi[d] = q[dim + d];
+              }
+            p->set_location(x);
+            p->set_reference_location(xi);
+            p->set_id(static_cast<types::particle_index>(q[2 * dim]));
+            std::copy(q + 2 * dim + 1,
+                      q + 2 * dim + 1 + np,
+                      p->get_properties().begin());
+            --n_in;
+            --n_out;
+          }
+        for (std::size_t k = 0; k < n_in; ++k)
+          {
+            const double *q = moves.data.data() + (a + k)->second;
+            Point<dim>    x, xi;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                x[d]  = q[d];
+                xi[d] = q[dim + d];
+              }
+            particles.insert_particle(
+              x,
+              xi,
+              static_cast<types::particle_index>(q[2 * dim]),
+              grid.tile(tile),
+              make_array_view(q + 2 * dim + 1, q + 2 * dim + 1 + np));
+            // Stored wherever the pool had room: counts to the re-pack.
+            ++moved_since_sort;
+          }
+        for (std::size_t k = n_out; k > 0; --k)
+          particles.remove_particle(moves.leavers[out[k - 1]]);
+        a = a_end;
+      }
   }
 
 

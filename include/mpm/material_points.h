@@ -286,10 +286,40 @@ namespace mpm
     displace(const FunctionParser<dim> &displacement,
              const Point<dim>          &X,
              double                    *properties);
-    /// Insert the points other ranks sent to this one in relocate():
-    /// per rank, location, id and properties of each.
+    /// What relocate() found: the points that leave their tile (in
+    /// visiting order, with their tiles, and whether they went to another
+    /// rank) and the data of those that arrive in a tile of this rank
+    /// (location, reference location, id, properties).
+    struct Moves
+    {
+      using iterator =
+        typename Particles::ParticleHandler<dim>::particle_iterator;
+      void
+      leave(const iterator    &p,
+            const unsigned int tile,
+            const bool         to_other_rank);
+      void
+      arrive(const unsigned int             tile,
+             const Point<dim>              &x,
+             const Point<dim>              &xi,
+             const types::particle_index    id,
+             const ArrayView<const double> &properties);
+
+      std::vector<iterator>                             leavers;
+      std::vector<unsigned int>                         leaver_tile;
+      std::vector<bool>                                 to_rank;
+      std::vector<std::pair<unsigned int, std::size_t>> arrivals; // tile, at
+      std::vector<double>                               data;
+    };
+    /// Add the points other ranks sent to this one in relocate() (per
+    /// rank, location, id and properties of each) to @p moves.
     void
-    receive_points(const std::map<unsigned int, std::vector<double>> &received);
+    receive_points(const std::map<unsigned int, std::vector<double>> &received,
+                   Moves &moves) const;
+    /// Carry out @p moves (without the points sent to other ranks if
+    /// @p keep_sent).
+    void
+    settle(Moves &moves, const bool keep_sent);
     std::string
     describe_leaving_point(
       const typename Particles::ParticleHandler<dim>::particle_iterator &p)
