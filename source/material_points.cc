@@ -42,6 +42,38 @@ namespace mpm
         }
       return ids;
     }
+
+
+    /// A point in a buffer of doubles, as relocation moves and sends it:
+    /// location (dim), reference location (dim), id (exact: ids are
+    /// below 2^53), properties.
+    template <int dim>
+    void
+    append_point(std::vector<double>           &to,
+                 const Point<dim>              &x,
+                 const Point<dim>              &xi,
+                 const types::particle_index    id,
+                 const ArrayView<const double> &properties)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        to.push_back(x[d]);
+      for (unsigned int d = 0; d < dim; ++d)
+        to.push_back(xi[d]);
+      to.push_back(id);
+      to.insert(to.end(), properties.begin(), properties.end());
+    }
+
+    /// The location (at @p q) or reference location (at @p q + dim) of a
+    /// point stored by append_point().
+    template <int dim>
+    Point<dim>
+    point_at(const double *q)
+    {
+      Point<dim> x;
+      for (unsigned int d = 0; d < dim; ++d)
+        x[d] = q[d];
+      return x;
+    }
   } // namespace
 
 
@@ -897,10 +929,9 @@ namespace mpm
   types::particle_index
   MaterialPoints<dim>::relocate(const OutOfGridPolicy policy)
   {
-    // Points to delete from their old place, in visiting order, with their
-    // tiles: those that moved to another tile of this rank (their data are
-    // in 'arriving'), those that left the grid, and those that moved to a
-    // neighbour rank's tile (leaving[i]; their data were packed for it).
+    // The points that leave their tile, in visiting order: to another tile
+    // of this rank (their data are buffered as arrivals), out of the grid,
+    // or to a neighbour rank's tile (their data packed in 'sent').
     Moves                 moves;
     std::string           failure;
     types::particle_index n_lost   = 0;
@@ -959,12 +990,11 @@ namespace mpm
             else if (grid.tile(there).state() == IteratorState::valid &&
                      grid.tile(there)->is_ghost())
               {
-                auto &to = sent[grid.tile(there)->subdomain_id()];
-                for (unsigned int d = 0; d < dim; ++d)
-                  to.push_back(p->get_location()[d]);
-                to.push_back(p->get_id()); // exact: ids are below 2^53
-                const auto src = p->get_properties();
-                to.insert(to.end(), src.begin(), src.end());
+                append_point(sent[grid.tile(there)->subdomain_id()],
+                             p->get_location(),
+                             p->get_reference_location(),
+                             p->get_id(),
+                             p->get_properties());
                 moves.leave(p, here, true);
               }
             else
@@ -997,7 +1027,7 @@ namespace mpm
       {
         particles.sort_particles_into_subdomains_and_cells();
         ++n_full_sorts;
-        moved_since_sort = 0;
+        appended_since_repack = 0;
         // deal.II's sort recomputes every reference location by its own
         // mapping, which can differ from locate() in the last bit; the
         // bases read it, so a run would depend on when it sorted.
@@ -1017,15 +1047,16 @@ namespace mpm
     // room, far from its new neighbours; as points flow, every loop walks
     // memory at random (a settling block at nu = 0.35 ran at 2.3-2.9x the
     // cost per point-step of one at nu = 0). So once the moves since the
-    // last re-pack pass a fraction of the points, their data are put back
-    // in visiting order (doc/performance.md). deal.II's sort (above) does
+    // last re-pack pass a fraction of the points (settle() counts those
+    // it appends; one written over a leaver keeps its slot), their data are put
+    // back in visiting order (doc/performance.md). deal.II's sort (above) does
     // that too, but by a copy of all the points' data.
-    if (moved_since_sort >
+    if (appended_since_repack >
         memory_order_tolerance * particles.n_locally_owned_particles())
       {
         restore_memory_order();
         ++n_repacks;
-        moved_since_sort = 0;
+        appended_since_repack = 0;
       }
 
     return Utilities::MPI::sum(n_lost, comm);
@@ -1053,12 +1084,7 @@ namespace mpm
                                      const ArrayView<const double> &properties)
   {
     arrivals.emplace_back(tile, data.size());
-    for (unsigned int d = 0; d < dim; ++d)
-      data.push_back(x[d]);
-    for (unsigned int d = 0; d < dim; ++d)
-      data.push_back(xi[d]);
-    data.push_back(id);
-    data.insert(data.end(), properties.begin(), properties.end());
+    append_point(data, x, xi, id, properties);
   }
 
 
@@ -1068,16 +1094,15 @@ namespace mpm
     const std::map<unsigned int, std::vector<double>> &received,
     Moves                                             &moves) const
   {
-    const unsigned int n = dim + 1 + fields.n_properties;
+    const unsigned int n = 2 * dim + 1 + fields.n_properties;
     std::string        failure;
     // In the order of the sending ranks, each in its visiting order: the
     // same points arrive in the same order whenever the run is repeated.
     for (const auto &[rank, data] : received)
       for (std::size_t k = 0; k + n <= data.size(); k += n)
         {
-          Point<dim> x;
-          for (unsigned int d = 0; d < dim; ++d)
-            x[d] = data[k + d];
+          const Point<dim> x = point_at<dim>(data.data() + k);
+          // (The reference location is this rank's, from locate().)
           typename BackgroundGrid<dim>::CellCoordinates cell;
           Point<dim>                                    xi;
           const bool         inside = grid.locate(x, cell, xi);
@@ -1097,8 +1122,8 @@ namespace mpm
           moves.arrive(tile,
                        x,
                        grid.tile_reference(cell, xi),
-                       static_cast<types::particle_index>(data[k + dim]),
-                       make_array_view(data.data() + k + dim + 1,
+                       static_cast<types::particle_index>(data[k + 2 * dim]),
+                       make_array_view(data.data() + k + 2 * dim + 1,
                                        data.data() + k + n));
         }
     raise_if_any_failed(failure, comm);
@@ -1125,12 +1150,11 @@ namespace mpm
     std::vector<std::pair<unsigned int, std::pair<std::size_t, std::size_t>>>
       leaving;
     for (std::size_t i = 0; i < moves.leavers.size(); ++i)
-      if (!(keep_sent && moves.to_rank[i]))
-        {
-          if (leaving.empty() || leaving.back().first != moves.leaver_tile[i])
-            leaving.push_back({moves.leaver_tile[i], {i, i}});
-          leaving.back().second.second = i + 1;
-        }
+      {
+        if (leaving.empty() || leaving.back().first != moves.leaver_tile[i])
+          leaving.push_back({moves.leaver_tile[i], {i, i}});
+        leaving.back().second.second = i + 1;
+      }
     std::stable_sort(leaving.begin(), leaving.end(), by_tile);
 
     auto next_leaving = leaving.begin();
@@ -1163,14 +1187,8 @@ namespace mpm
           {
             const double *q = moves.data.data() + (a + n_in - 1)->second;
             auto         &p = moves.leavers[out[n_out - 1]];
-            Point<dim>    x, xi;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                x[d]  = q[d];
-                xi[d] = q[dim + d];
-              }
-            p->set_location(x);
-            p->set_reference_location(xi);
+            p->set_location(point_at<dim>(q));
+            p->set_reference_location(point_at<dim>(q + dim));
             p->set_id(static_cast<types::particle_index>(q[2 * dim]));
             std::copy(q + 2 * dim + 1,
                       q + 2 * dim + 1 + np,
@@ -1181,20 +1199,14 @@ namespace mpm
         for (std::size_t k = 0; k < n_in; ++k)
           {
             const double *q = moves.data.data() + (a + k)->second;
-            Point<dim>    x, xi;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                x[d]  = q[d];
-                xi[d] = q[dim + d];
-              }
             particles.insert_particle(
-              x,
-              xi,
+              point_at<dim>(q),
+              point_at<dim>(q + dim),
               static_cast<types::particle_index>(q[2 * dim]),
               grid.tile(tile),
               make_array_view(q + 2 * dim + 1, q + 2 * dim + 1 + np));
             // Stored wherever the pool had room: counts to the re-pack.
-            ++moved_since_sort;
+            ++appended_since_repack;
           }
         for (std::size_t k = n_out; k > 0; --k)
           particles.remove_particle(moves.leavers[out[k - 1]]);
@@ -1211,10 +1223,10 @@ namespace mpm
     constexpr Handle none  = std::numeric_limits<Handle>::max();
     const auto      &tiles = grid.locally_owned_tiles();
 
-    // The slot of every point in visiting order (its handle, which deal.II
-    // gives as its local index), and where each tile's points begin.
     if (particles.n_locally_owned_particles() == 0)
       return 0;
+    // The slot of every point in visiting order (its handle, which deal.II
+    // gives as its local index), and where each tile's points begin.
     std::vector<Handle>       slot_of;
     std::vector<unsigned int> tile_begin(tiles.size() + 1, 0);
     slot_of.reserve(particles.n_locally_owned_particles());

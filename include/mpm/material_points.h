@@ -242,7 +242,7 @@ namespace mpm
      * once, through one free slot of deal.II's property pool, and keeps
      * its place in its tile, so no sum changes by a bit. Local to the
      * rank. Returns the number of points moved. relocate() calls it once
-     * the points moved since the last re-pack pass a fraction of them.
+     * the points appended since the last re-pack pass a fraction of them.
      */
     types::particle_index
     restore_memory_order();
@@ -312,7 +312,7 @@ namespace mpm
       std::vector<double>                               data;
     };
     /// Add the points other ranks sent to this one in relocate() (per
-    /// rank, location, id and properties of each) to @p moves.
+    /// rank, each as relocate() buffers a point) to @p moves.
     void
     receive_points(const std::map<unsigned int, std::vector<double>> &received,
                    Moves &moves) const;
@@ -338,10 +338,10 @@ namespace mpm
     double                                 minimum_mass;
     unsigned int                           n_full_sorts = 0;
     unsigned int                           n_repacks    = 0;
-    /// Points moved to another tile of this rank since their data were
-    /// last put in visiting order, and the fraction of the points beyond
-    /// which relocate() does it again.
-    types::particle_index   moved_since_sort       = 0;
+    /// Points appended to a tile (stored wherever the pool had room)
+    /// since their data were last put in visiting order, and the fraction
+    /// of the points beyond which relocate() does it again.
+    types::particle_index   appended_since_repack  = 0;
     static constexpr double memory_order_tolerance = 0.05;
     std::string             state_failure;
   };
