@@ -238,6 +238,9 @@ namespace mpm
     static constexpr unsigned int n_sums    = 1 + 2 * dim;
     static constexpr unsigned int node_mass = 0, v_old = 1, v_new = 1 + dim;
     static constexpr unsigned int n_velocities = 1 + 2 * dim;
+    /// Per owned node: did deformable fields press on each other at this
+    /// step's force update (multi-body contact; see apply_contact)?
+    std::vector<unsigned char> pressed_nodes;
 
     /// One explicit step of @p dt (all that step() does without
     /// substepping).
@@ -307,8 +310,11 @@ namespace mpm
     template <typename Basis>
     void
     add_fluid_forces(const Basis &basis);
+    /// @p for_strain_rate: these velocities give the stress update's strain
+    /// rate after the force update (MUSL), see apply_contact.
     void
-    grid_velocities_from_momentum(const unsigned int slot);
+    grid_velocities_from_momentum(const unsigned int slot,
+                                  const bool         for_strain_rate = false);
     void
     grid_velocities_after_forces(const double dt);
     template <typename Basis>
@@ -329,9 +335,12 @@ namespace mpm
     average_volume_change_over_cells(const double dt);
     /// Multi-body contact and rigid bodies at every owned node where a
     /// body has a field of its own; @p dt > 0 at the force update, where
-    /// the rigid bodies' reactions are measured.
+    /// the rigid bodies' reactions are measured and where the fields press
+    /// on each other is recorded for @p for_strain_rate (see there).
     void
-    apply_contact(const unsigned int slot, const double dt);
+    apply_contact(const unsigned int slot,
+                  const double       dt,
+                  const bool         for_strain_rate);
     /// The field a point scatters into and gathers from.
     unsigned int
     field_of(const double *q) const
@@ -355,7 +364,9 @@ namespace mpm
     /// Boundary constraints on the nodal velocities in @p slot; @p dt > 0
     /// at the force update, where reactions are measured and dashpots act.
     void
-    apply_velocity_constraints(const unsigned int slot, const double dt = 0);
+    apply_velocity_constraints(const unsigned int slot,
+                               const double       dt              = 0,
+                               const bool         for_strain_rate = false);
     /// Visit every locally owned point with its stencil (see there).
     template <typename Basis, typename Kernel>
     void

@@ -109,13 +109,14 @@ namespace mpm
 
 
   template <int dim>
-  void
+  bool
   MultiFieldContact<dim>::correct_node(
     double                      *node,
     const unsigned int           stride,
     const unsigned int           slot,
     const double                *data,
     const double                 min_mass,
+    const bool                   hold_normal,
     std::vector<Tensor<1, dim>> &rigid_impulse) const
   {
     set_rigid_velocities(node, stride, slot);
@@ -144,7 +145,7 @@ namespace mpm
         total_gradient += Fields::vector<dim>(data + f * data_stride);
       }
     if (n_present < 2)
-      return;
+      return false;
     // The velocity the fields must not move into: a rigid body's, or the
     // centre of mass's.
     const Tensor<1, dim> reference =
@@ -160,10 +161,17 @@ namespace mpm
     // carries none). Against a rigid body (its exact normal, no mass) it
     // is not needed, and it would hold a rolling disk where its surface
     // lifts off.
+    // @p hold_normal (the strain rate's velocities where the fields pressed
+    // on each other at the last force update, see
+    // TimeIntegrator::apply_contact) has them stay together the same way.
     bool light = false;
     if (rigid < 0)
-      for (unsigned int f = 0; f < field_count; ++f)
-        light = light || (takes_part(f) && node[f * stride] < min_mass);
+      {
+        light = hold_normal;
+        for (unsigned int f = 0; f < field_count; ++f)
+          light = light || (takes_part(f) && node[f * stride] < min_mass);
+      }
+    bool pressed = false; // did deformable fields approach each other?
     for (unsigned int f = 0; f < field_count; ++f)
       {
         double *field = node + f * stride;
@@ -186,7 +194,8 @@ namespace mpm
         const double         approach = relative * n;
         if (!(approach > 0) && !light)
           continue;
-        Tensor<1, dim>       change     = -approach * n;
+        pressed                     = pressed || (rigid < 0 && approach > 0);
+        Tensor<1, dim>       change = -approach * n;
         const Tensor<1, dim> tangential = relative - approach * n;
         const double         slide      = tangential.norm();
         if (slide > 0 && approach > 0)
@@ -195,6 +204,7 @@ namespace mpm
         if (rigid >= 0)
           rigid_impulse[rigid_of_field[rigid]] += field[0] * change;
       }
+    return pressed;
   }
 
 

@@ -91,16 +91,19 @@ namespace mpm
      * @p data holds each field's sum_p m_p grad phi_I(x_p) (dim) and the
      * number of its points whose domain holds the node (1). A deformable
      * field lighter than @p min_mass (the integrator's small nodal mass)
-     * moves with the reference velocity. The momentum the rigid fields
+     * moves with the reference velocity along the normal, and so do all
+     * deformable fields if @p hold_normal. The momentum the rigid fields
      * remove is added to @p rigid_impulse (one per rigid body, per unit
-     * dt: the caller scales it).
+     * dt: the caller scales it). Returns whether deformable fields
+     * approached each other here (were pressed together).
      */
-    void
+    bool
     correct_node(double                      *node,
                  const unsigned int           stride,
                  const unsigned int           slot,
                  const double                *data,
                  const double                 min_mass,
+                 const bool                   hold_normal,
                  std::vector<Tensor<1, dim>> &rigid_impulse) const;
 
     /// Rigid velocities only (a node with one field).
