@@ -1165,10 +1165,13 @@ namespace mpm
    * basis in benchmarks/contact/README.md). USF, whose strain rate comes
    * from the velocities before the force update, gains the same way (1.088
    * with FLIP, 1.001 with PIC) and the same rule with the last step's state
-   * brings it to 1.021 and 0.592, but makes the linear basis with APIC
-   * unstable (the disks' energy grows tenfold in one output interval), so
-   * USF is left as it was. A repartition (load balance) runs between steps
-   * and the state is made in the step it is used: nothing carries over.
+   * brings it to 1.021 and 0.592. It is not applied: that state would
+   * carry over from one step to the next, which a repartition (load
+   * balance, between steps) loses, so 2 ranks would not give the 1-rank
+   * answer; and the linear basis with APIC then failed on the disks (with
+   * outputs every 0.25 s), a combination that is fragile without contact
+   * too (one field, outputs every 0.125 s: USL, USF and MUSL all stop).
+   * In MUSL the state is made in the step it is used: nothing carries over.
    */
   template <int dim>
   void
