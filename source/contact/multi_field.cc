@@ -161,8 +161,8 @@ namespace mpm
     // carries none). Against a rigid body (its exact normal, no mass) it
     // is not needed, and it would hold a rolling disk where its surface
     // lifts off.
-    // @p hold_normal (the strain rate's velocities where the fields pressed
-    // on each other at the last force update, see
+    // @p hold_normal (MUSL's strain-rate velocities where the fields pressed
+    // on each other at the step's force update, see
     // TimeIntegrator::apply_contact) has them stay together the same way.
     bool light = false;
     if (rigid < 0)
