@@ -418,7 +418,8 @@ namespace mpm
     if (contact)
       {
         contact_data.reinit(grid.make_partitioner(n_fields * (dim + 1)));
-        pressed_nodes.assign(grid.n_locally_owned_nodes(), 0);
+        if (prm.scheme == UpdateScheme::MUSL)
+          pressed_nodes.assign(grid.n_locally_owned_nodes(), 0);
       }
     if (virtual_fluid)
       {
@@ -1183,6 +1184,7 @@ namespace mpm
     const double *data = contact_data.get_values();
     contact->set_time(t);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
+    const bool                  record = dt > 0 && !pressed_nodes.empty();
     for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
       {
         const bool pressed =
@@ -1193,7 +1195,7 @@ namespace mpm
                                 min_nodal_mass,
                                 for_strain_rate && pressed_nodes[i],
                                 impulse);
-        if (dt > 0)
+        if (record)
           pressed_nodes[i] = pressed;
       }
     if (dt > 0)

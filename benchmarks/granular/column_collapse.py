@@ -10,8 +10,9 @@ initial potential energy: the deposit must be at rest), and the cost.
 The front L_inf is the largest x of a material point plus half a point
 spacing (the body's edge). A second front, robust to the thin tail a
 cohesionless continuum leaves ahead of its deposit, is the largest x where
-the deposit is at least 10 % of H0 thick (runout_thick; see README.md). The laws, for quasi-2D columns on a horizontal
-plane (as the issue quotes them; see README.md for their provenance):
+the deposit is at least 10 % of H0 thick (runout_thick; see README.md).
+The laws, for quasi-2D columns on a horizontal plane (as the issue quotes
+them; see README.md for their provenance):
   Lube et al. 2005:        1.2 a for a < 1.8,   1.9 a^(2/3) above;
   Lajeunesse et al. 2005:  1.2 a for a < 3,     1.9 a^(2/3) above (glass).
 The envelope at a is [min, max] of the two laws, widened by the scatter of
@@ -58,9 +59,9 @@ def run(exe, a, n, end_time, extra):
 
 
 def thick_front(points, spacing, thickness):
-    """The largest x where the deposit's top (the highest point within
-    three quarters of a spacing, plus half a spacing) is at least
-    @p thickness above the floor."""
+    """The largest x where the deposit is at least @p thickness thick: its
+    top is the highest point (plus half a spacing) in a bin of one spacing
+    or in either bin next to it."""
     top = {}
     for p in points:
         k = int(p[0] / spacing)
@@ -88,9 +89,9 @@ def main():
     a = parser.parse_args()
     extra = overrides(a)
 
-    print("aspect,cells_per_width,runout,runout_thick,lube,lajeunesse,envelope_low,"
-          "envelope_high,inside,kinetic_over_released,wall_seconds,"
-          "ns_per_particle_step")
+    print("aspect,cells_per_width,runout,runout_thick,lube,lajeunesse,"
+          "envelope_low,envelope_high,inside,kinetic_over_released,"
+          "wall_seconds,ns_per_particle_step")
     ok = True
     for aspect in [float(x) for x in a.aspect.split(",")]:
         # Collapse and spreading last a few sqrt(H0 / g); 8 of them, at

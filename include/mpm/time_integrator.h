@@ -238,9 +238,6 @@ namespace mpm
     static constexpr unsigned int n_sums    = 1 + 2 * dim;
     static constexpr unsigned int node_mass = 0, v_old = 1, v_new = 1 + dim;
     static constexpr unsigned int n_velocities = 1 + 2 * dim;
-    /// Per owned node: did deformable fields press on each other at this
-    /// step's force update (multi-body contact; see apply_contact)?
-    std::vector<unsigned char> pressed_nodes;
 
     /// One explicit step of @p dt (all that step() does without
     /// substepping).
@@ -362,7 +359,8 @@ namespace mpm
     void
     apply_dashpots(const unsigned int slot, const double dt);
     /// Boundary constraints on the nodal velocities in @p slot; @p dt > 0
-    /// at the force update, where reactions are measured and dashpots act.
+    /// at the force update, where reactions are measured and dashpots act;
+    /// @p for_strain_rate as in grid_velocities_from_momentum.
     void
     apply_velocity_constraints(const unsigned int slot,
                                const double       dt              = 0,
@@ -435,8 +433,11 @@ namespace mpm
     /// (dim; minus the gradient of the field's nodal mass) and the volume
     /// sum_p V_p phi_I(x_p).
     LinearAlgebra::distributed::Vector<double> contact_data;
-    TimerOutput                               &timer;
-    MPI_Comm                                   comm;
+    /// MUSL with contact only: per owned node, did deformable fields press
+    /// on each other at this step's force update (see apply_contact)?
+    std::vector<unsigned char> pressed_nodes;
+    TimerOutput               &timer;
+    MPI_Comm                   comm;
 
     LinearAlgebra::distributed::Vector<double> grid_sums;
     LinearAlgebra::distributed::Vector<double> grid_velocity;

@@ -164,12 +164,13 @@ namespace mpm
     // @p hold_normal (MUSL's strain-rate velocities where the fields pressed
     // on each other at the step's force update, see
     // TimeIntegrator::apply_contact) has them stay together the same way.
-    bool light = false;
+    bool keep_together = false;
     if (rigid < 0)
       {
-        light = hold_normal;
+        keep_together = hold_normal;
         for (unsigned int f = 0; f < field_count; ++f)
-          light = light || (takes_part(f) && node[f * stride] < min_mass);
+          keep_together =
+            keep_together || (takes_part(f) && node[f * stride] < min_mass);
       }
     bool pressed = false; // did deformable fields approach each other?
     for (unsigned int f = 0; f < field_count; ++f)
@@ -192,7 +193,7 @@ namespace mpm
         const Tensor<1, dim> v        = Fields::vector<dim>(field + slot);
         const Tensor<1, dim> relative = v - reference;
         const double         approach = relative * n;
-        if (!(approach > 0) && !light)
+        if (!(approach > 0) && !keep_together)
           continue;
         pressed                     = pressed || (rigid < 0 && approach > 0);
         Tensor<1, dim>       change = -approach * n;
