@@ -9,7 +9,6 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
-#include <set>
 #include <sstream>
 
 namespace mpm
@@ -469,32 +468,6 @@ namespace mpm
       pcout << " " << name << "[" << n << "]";
     pcout << std::endl;
     warn_of_volumetric_locking();
-    warn_of_usf_contact();
-  }
-
-
-  /**
-   * USF takes the strain rate from the velocities before the force update,
-   * which do not see where deformable bodies press on each other, and
-   * bodies that part then gain energy (two disks: 1.088 of the initial
-   * energy with FLIP, against 1.027 with one field; see
-   * TimeIntegrator::apply_contact). Said at the start, with the remedy.
-   */
-  template <int dim>
-  void
-  Simulation<dim>::warn_of_usf_contact() const
-  {
-    if (integrator_parameters.scheme != UpdateScheme::USF)
-      return;
-    std::set<unsigned int> deformable_fields;
-    for (unsigned int b = 0; b < body_parameters.size(); ++b)
-      if (!points->bodies()[b].rigid_velocity)
-        deformable_fields.insert(contact->field_of_body(b));
-    if (deformable_fields.size() > 1)
-      pcout << "  warning: with USF, deformable bodies in contact gain energy "
-               "as they part (benchmarks/contact/README.md); set "
-               "'Simulation/update scheme' to USL or MUSL"
-            << std::endl;
   }
 
 

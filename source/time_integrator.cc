@@ -301,6 +301,8 @@ namespace mpm
                       : nullptr)
     , contact(contact != nullptr && contact->n_fields() > 1 ? contact : nullptr)
     , n_fields(this->contact ? this->contact->n_fields() : 1)
+    , usf_contact_rule(prm.scheme == UpdateScheme::USF && this->contact &&
+                       this->contact->deformable_bodies_touch())
     , timer(timer)
     , comm(comm)
   {
@@ -498,10 +500,17 @@ namespace mpm
           gather_to_particles(basis, dt, true);
           update_stresses(dt);
           break;
-        case UpdateScheme::USF:
-          scatter_to_grid(basis, true, false);
-          grid_velocities_from_momentum(v_old);
-          update_kinematics(basis, dt, v_old);
+          case UpdateScheme::USF: {
+            // With deformable bodies in contact, the forces of the stress
+            // the step starts from tell where they press on each other
+            // (see apply_contact); the updated stress's replace them below.
+            const bool pressing = usf_contact_rule;
+            scatter_to_grid(basis, true, pressing);
+            grid_velocities_from_momentum(v_old);
+            if (pressing)
+              strain_rate_velocities_with_contact(dt);
+            update_kinematics(basis, dt, pressing ? v_new : v_old);
+          }
           update_stresses(dt);
           if (prm.basis == BasisType::cpgimp)
             {
@@ -1164,15 +1173,13 @@ namespace mpm
    * on each other at this step's force update: the strain rate sees the
    * constraint the contact force acted through (now 1.000 and 0.577; every
    * basis in benchmarks/contact/README.md). USF, whose strain rate comes
-   * from the velocities before the force update, gains the same way (1.088
-   * with FLIP, 1.001 with PIC) and the same rule with the last step's state
-   * brings it to 1.021 and 0.592. It is not applied: that state would
-   * carry over from one step to the next, which a repartition (load
-   * balance, between steps) loses, so 2 ranks would not give the 1-rank
-   * answer; and the linear basis with APIC then failed on the disks (with
-   * outputs every 0.25 s), a combination that is fragile without contact
-   * too (one field, outputs every 0.125 s: USL, USF and MUSL all stop).
-   * In MUSL the state is made in the step it is used: nothing carries over.
+   * from the velocities before the force update, gained the same way
+   * (1.088 with FLIP, 1.001 with PIC). It has no force update before its
+   * strain rate, so it tries one with the forces of the stress the step
+   * starts from (strain_rate_velocities_with_contact): now 1.018 and 0.610
+   * (one field: 1.027, 0.630). The state is made in the step it is used,
+   * so nothing carries over from one step to the next, which a
+   * repartition (load balance, between steps) would lose.
    */
   template <int dim>
   void
@@ -1204,6 +1211,62 @@ namespace mpm
     // friction's share is dissipated), at both velocity updates.
     for (unsigned int r = 0; r < impulse.size(); ++r)
       step_work += impulse[r] * contact->rigid_velocity_of(r);
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::strain_rate_velocities_with_contact(const double dt)
+  {
+    TimerOutput::Scope scope(timer, "grid update");
+    const double      *g    = grid_sums.get_values();
+    const double      *data = contact_data.get_values();
+    double            *u    = grid_velocity.get_values();
+    contact->set_time(t);
+    // A node's fields, to try the force update on: only the sign of the
+    // approach matters, so damping and Newmark's factor are left out, and
+    // no reaction is measured.
+    std::vector<double>         trial(n_fields * n_velocities);
+    std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
+    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+      {
+        double      *node      = u + n_velocities * slot_of(i, 0);
+        unsigned int n_present = 0;
+        for (unsigned int f = 0; f < n_fields; ++f)
+          {
+            double *vel = node + n_velocities * f;
+            for (unsigned int d = 0; d < dim; ++d)
+              vel[v_new + d] = vel[v_old + d];
+            n_present += vel[node_mass] > 0;
+          }
+        if (n_present < 2)
+          continue;
+        std::copy(node, node + n_fields * n_velocities, trial.begin());
+        for (unsigned int f = 0; f < n_fields; ++f)
+          {
+            const double *sums = g + n_sums * slot_of(i, f);
+            double       *vel  = trial.data() + n_velocities * f;
+            const double  dt_m = vel[node_mass] > 0 ? dt / vel[node_mass] : 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              vel[v_new + d] += dt_m * sums[force + d];
+          }
+        const double *node_data = data + (dim + 1) * slot_of(i, 0);
+        if (contact->correct_node(trial.data(),
+                                  n_velocities,
+                                  v_new,
+                                  node_data,
+                                  min_nodal_mass,
+                                  false,
+                                  impulse))
+          contact->correct_node(node,
+                                n_velocities,
+                                v_new,
+                                node_data,
+                                min_nodal_mass,
+                                true,
+                                impulse);
+      }
+    grid_velocity.update_ghost_values();
   }
 
 

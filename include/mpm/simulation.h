@@ -56,8 +56,6 @@ namespace mpm
     void
     warn_of_volumetric_locking() const;
     void
-    warn_of_usf_contact() const;
-    void
     print_performance(const double wall_seconds,
                       const double step_seconds) const;
     /// Work of the busiest rank over the mean, less 1 (collective).

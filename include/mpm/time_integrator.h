@@ -338,6 +338,12 @@ namespace mpm
     apply_contact(const unsigned int slot,
                   const double       dt,
                   const bool         for_strain_rate);
+    /// USF with contact: v_old into v_new, and where deformable fields
+    /// would press on each other at a force update with the forces
+    /// scattered so far (of the stress the step starts from), there they
+    /// do not part along the normal (see apply_contact).
+    void
+    strain_rate_velocities_with_contact(const double dt);
     /// The field a point scatters into and gathers from.
     unsigned int
     field_of(const double *q) const
@@ -429,9 +435,12 @@ namespace mpm
     /// nodal vector holds the fields of a node one after the other.
     unsigned int              n_fields;
     std::vector<unsigned int> field_of_body;
+    /// USF with deformable bodies that touch (see
+    /// strain_rate_velocities_with_contact).
+    const bool usf_contact_rule;
     /// Multi-field only: per node and field, sum_p m_p grad phi_I(x_p)
-    /// (dim; minus the gradient of the field's nodal mass) and the volume
-    /// sum_p V_p phi_I(x_p).
+    /// (dim; minus the gradient of the field's nodal mass) and the number
+    /// of the field's points whose domain holds the node.
     LinearAlgebra::distributed::Vector<double> contact_data;
     /// MUSL with contact only: per owned node, did deformable fields press
     /// on each other at this step's force update (see apply_contact)?

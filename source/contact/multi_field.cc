@@ -2,6 +2,7 @@
 #include <mpm/parameters.h>
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 namespace mpm
@@ -64,6 +65,11 @@ namespace mpm
               rigid_velocity.push_back(bodies[b].rigid_velocity);
             }
         }
+    std::set<unsigned int> deformable;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (!bodies[b].rigid_velocity)
+        deformable.insert(body_field[b]);
+    n_deformable_fields = deformable.size();
     current_rigid_velocity.resize(rigid_body_list.size());
     meters.resize(rigid_body_list.size());
     set_time(0);

@@ -75,6 +75,14 @@ namespace mpm
       return field_count;
     }
 
+    /// Whether two deformable fields may meet: bodies of different fields,
+    /// neither rigid.
+    bool
+    deformable_bodies_touch() const
+    {
+      return n_deformable_fields > 1;
+    }
+
     unsigned int
     field_of_body(const unsigned int body) const
     {
@@ -140,6 +148,7 @@ namespace mpm
   private:
     const double              mu;
     unsigned int              field_count;
+    unsigned int              n_deformable_fields; ///< with a body
     std::vector<unsigned int> body_field;
     std::vector<unsigned int> rigid_body_list;
     std::vector<int>          rigid_of_field; ///< -1: none
