@@ -419,8 +419,11 @@ namespace mpm
     grid_velocity.reinit(grid.make_partitioner(n_fields * n_velocities));
     if (contact)
       {
-        contact_data.reinit(grid.make_partitioner(n_fields * (dim + 1)));
-        if (prm.scheme == UpdateScheme::MUSL)
+        contact_data.reinit(grid.make_partitioner(
+          n_fields * MultiFieldContact<dim>::data_per_field));
+        // Only deformable fields press on each other.
+        if (prm.scheme == UpdateScheme::MUSL &&
+            contact->deformable_bodies_touch())
           pressed_nodes.assign(grid.n_locally_owned_nodes(), 0);
       }
     if (virtual_fluid)
@@ -500,17 +503,15 @@ namespace mpm
           gather_to_particles(basis, dt, true);
           update_stresses(dt);
           break;
-          case UpdateScheme::USF: {
-            // With deformable bodies in contact, the forces of the stress
-            // the step starts from tell where they press on each other
-            // (see apply_contact); the updated stress's replace them below.
-            const bool pressing = usf_contact_rule;
-            scatter_to_grid(basis, true, pressing);
-            grid_velocities_from_momentum(v_old);
-            if (pressing)
-              strain_rate_velocities_with_contact(dt);
-            update_kinematics(basis, dt, pressing ? v_new : v_old);
-          }
+        case UpdateScheme::USF:
+          // With deformable bodies in contact, the forces of the stress the
+          // step starts from tell where they press on each other (see
+          // apply_contact); the updated stress's replace them below.
+          scatter_to_grid(basis, true, usf_contact_rule);
+          grid_velocities_from_momentum(v_old);
+          if (usf_contact_rule)
+            strain_rate_velocities_with_contact(dt);
+          update_kinematics(basis, dt, usf_contact_rule ? v_new : v_old);
           update_stresses(dt);
           if (prm.basis == BasisType::cpgimp)
             {
@@ -706,7 +707,8 @@ namespace mpm
                   for (unsigned int v = 0; v < Basis::n_nodes; ++v)
                     {
                       double *data = contact_data.begin() +
-                                     (dim + 1) * slot_of(s.nodes[v], field);
+                                     MultiFieldContact<dim>::data_per_field *
+                                       slot_of(s.nodes[v], field);
                       for (unsigned int d = 0; d < dim; ++d)
                         data[d] += m * s.gradients[v][d];
                       const Tensor<1, dim> r      = s.node_offset(v);
@@ -1191,16 +1193,19 @@ namespace mpm
     const double *data = contact_data.get_values();
     contact->set_time(t);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
-    const bool                  record = dt > 0 && !pressed_nodes.empty();
+    // Only MUSL with deformable bodies in contact keeps pressed_nodes.
+    const bool record = dt > 0 && !pressed_nodes.empty();
+    const bool hold   = for_strain_rate && !pressed_nodes.empty();
     for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
       {
         const bool pressed =
           contact->correct_node(u + n_velocities * slot_of(i, 0),
                                 n_velocities,
                                 slot,
-                                data + (dim + 1) * slot_of(i, 0),
+                                data + MultiFieldContact<dim>::data_per_field *
+                                         slot_of(i, 0),
                                 min_nodal_mass,
-                                for_strain_rate && pressed_nodes[i],
+                                hold && pressed_nodes[i],
                                 impulse);
         if (record)
           pressed_nodes[i] = pressed;
@@ -1250,7 +1255,8 @@ namespace mpm
             for (unsigned int d = 0; d < dim; ++d)
               vel[v_new + d] += dt_m * sums[force + d];
           }
-        const double *node_data = data + (dim + 1) * slot_of(i, 0);
+        const double *node_data =
+          data + MultiFieldContact<dim>::data_per_field * slot_of(i, 0);
         if (contact->correct_node(trial.data(),
                                   n_velocities,
                                   v_new,

@@ -442,8 +442,9 @@ namespace mpm
     /// (dim; minus the gradient of the field's nodal mass) and the number
     /// of the field's points whose domain holds the node.
     LinearAlgebra::distributed::Vector<double> contact_data;
-    /// MUSL with contact only: per owned node, did deformable fields press
-    /// on each other at this step's force update (see apply_contact)?
+    /// MUSL with deformable bodies in contact only: per owned node, did
+    /// their fields press on each other at this step's force update (see
+    /// apply_contact)?
     std::vector<unsigned char> pressed_nodes;
     TimerOutput               &timer;
     MPI_Comm                   comm;

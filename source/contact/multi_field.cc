@@ -126,7 +126,7 @@ namespace mpm
     std::vector<Tensor<1, dim>> &rigid_impulse) const
   {
     set_rigid_velocities(node, stride, slot);
-    constexpr unsigned int data_stride = dim + 1;
+    constexpr unsigned int data_stride = data_per_field;
     unsigned int           n_present   = 0;
     int                    rigid       = -1; // a rigid field here, if any
     double                 mass        = 0;

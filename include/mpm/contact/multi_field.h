@@ -68,6 +68,11 @@ namespace mpm
     MultiFieldContact(const ContactParameters<dim>           &parameters,
                       const std::vector<BodyParameters<dim>> &bodies);
 
+    /// The contact data per node and field (see correct_node): sum_p m_p
+    /// grad phi_I(x_p) (dim) and the number of the field's points whose
+    /// domain holds the node (1).
+    static constexpr unsigned int data_per_field = dim + 1;
+
     /// 1 if no body has a field of its own (the single-field scheme).
     unsigned int
     n_fields() const
