@@ -41,6 +41,10 @@ namespace mpm
       static constexpr bool         needs_half_width = false;
 
       static constexpr bool exact_surface_weights = false;
+      /// The hat's slope is +-1 up to the edge of its support, where its
+      /// value vanishes: a node the point barely reaches has a full-size
+      /// gradient (see TimeIntegrator::discount_light_node_increments).
+      static constexpr bool gradient_vanishes_with_weight = false;
 
       static inline int
       evaluate(const double xi, const double, double *w, double *dw)
@@ -61,9 +65,10 @@ namespace mpm
      */
     struct GIMP
     {
-      static constexpr unsigned int n_nodes               = 3;
-      static constexpr bool         needs_half_width      = true;
-      static constexpr bool         exact_surface_weights = false;
+      static constexpr unsigned int n_nodes                       = 3;
+      static constexpr bool         needs_half_width              = true;
+      static constexpr bool         exact_surface_weights         = false;
+      static constexpr bool         gradient_vanishes_with_weight = true;
 
       static inline int
       evaluate(const double xi, const double l, double *w, double *dw)
@@ -105,7 +110,8 @@ namespace mpm
       static constexpr bool         needs_half_width = false;
       /// Surface loads through the functions at the surface itself
       /// (TensorProductBasis::weights_at), see scatter_to_grid.
-      static constexpr bool exact_surface_weights = true;
+      static constexpr bool exact_surface_weights         = true;
+      static constexpr bool gradient_vanishes_with_weight = true;
 
       static inline int
       evaluate(const double xi, const double, double *w, double *dw)
@@ -144,7 +150,8 @@ namespace mpm
       static constexpr unsigned int n_nodes          = 4;
       static constexpr bool         needs_half_width = false;
 
-      static constexpr bool exact_surface_weights = false;
+      static constexpr bool exact_surface_weights         = false;
+      static constexpr bool gradient_vanishes_with_weight = true;
 
       static inline int
       evaluate(const double xi, const double, double *w, double *dw)
@@ -189,6 +196,8 @@ namespace mpm
     static constexpr unsigned int n_1d             = Kernel::n_nodes;
     static constexpr unsigned int n_nodes          = Utilities::pow(n_1d, dim);
     static constexpr bool         needs_half_width = Kernel::needs_half_width;
+    static constexpr bool         gradient_vanishes_with_weight =
+      Kernel::gradient_vanishes_with_weight;
 
     /// Which nodes a point touches, relative to its cell, is one of this
     /// many patterns (the first node is 0 or -1 in each direction).

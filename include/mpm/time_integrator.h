@@ -412,6 +412,16 @@ namespace mpm
                       const double      *u,
                       const unsigned int stride,
                       const unsigned int slot) const;
+    /// APIC's C_p (in @p C, from v_new) with the linear basis: the light
+    /// nodes' force increments replaced by the point's (see there).
+    template <typename Stencil, std::size_t n_nodes>
+    void
+    discount_light_node_increments(
+      const Stencil                             &s,
+      const double                              *u,
+      const unsigned int                         stride,
+      const std::array<Tensor<1, dim>, n_nodes> &affine,
+      Tensor<2, dim>                            &C) const;
     /// Store L, update volume and F by I + dt L; note a failure if the
     /// point would invert.
     template <typename Iterator>
