@@ -1381,7 +1381,7 @@ namespace mpm
     for (unsigned int v = 0; v < s.weights.size(); ++v)
       {
         const double *node = u + stride * s.nodes[v];
-        if (node[node_mass] > min_nodal_mass)
+        if (!is_light(node))
           L += outer_product(Fields::vector<dim>(node + slot) - v_point,
                              s.gradients[v]);
       }
@@ -1436,7 +1436,7 @@ namespace mpm
         if (node[node_mass] == 0)
           C -= outer_product(Fields::vector<dim>(node + v_new) - v_point,
                              affine[v]);
-        else if (node[node_mass] <= min_nodal_mass)
+        else if (is_light(node))
           C -= outer_product(increment(v) - dv_point, affine[v]);
       }
   }

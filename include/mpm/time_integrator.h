@@ -412,6 +412,14 @@ namespace mpm
                       const double      *u,
                       const unsigned int stride,
                       const unsigned int slot) const;
+    /// Is the node (its entry in a nodal array) lighter than the
+    /// small-mass threshold? Its velocity is then left out of the
+    /// gradients (velocity_gradient, discount_light_node_increments).
+    bool
+    is_light(const double *node) const
+    {
+      return node[node_mass] <= min_nodal_mass;
+    }
     /// APIC's C_p (in @p C, from v_new) with the linear basis: the light
     /// nodes' force increments replaced by the point's, and massless nodes'
     /// velocities by the point's velocity @p v_point (see there).
