@@ -326,12 +326,14 @@ namespace
         check("  lateral stresses equal (returned to the compression edge)",
               edge,
               1e-9);
+        // Associated flow (psi = phi, the closed end of the dilation
+        // angle's range): the peak is the yield surface's, whatever psi.
         const double q_dp = triaxial_peak<3>("Drucker-Prager",
                                              {{"Young's modulus", "1e7"},
                                               {"Poisson's ratio", "0.3"},
                                               {"cohesion", "1e4"},
                                               {"friction angle", "30"},
-                                              {"dilation angle", "10"},
+                                              {"dilation angle", "30"},
                                               {"cone", "outer"}},
                                              s_c,
                                              edge);

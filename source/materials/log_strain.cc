@@ -8,20 +8,6 @@ namespace mpm
 {
   namespace LogStrain
   {
-    double
-    parse_angle(const ParameterHandler &prm,
-                const std::string      &path,
-                const std::string      &name,
-                const double            lower,
-                const double            upper,
-                const bool              upper_open)
-    {
-      return Parse::bounded_double(
-               prm, path, name, lower, upper, false, upper_open) *
-             M_PI / 180.;
-    }
-
-
     void
     FrictionalStrength::declare_parameters(ParameterHandler &prm,
                                            const bool        peak)
@@ -51,11 +37,20 @@ namespace mpm
                               const std::string      &path)
     {
       FrictionalStrength s;
+      const double       phi = friction_angle_degrees(prm, path);
       s.c   = Parse::bounded_double(prm, path, "cohesion", 0, 1e300);
-      s.phi = parse_angle(prm, path, "friction angle", 0, 90);
+      s.phi = radians(phi);
       s.psi =
-        parse_angle(prm, path, "dilation angle", 0, s.phi * 180 / M_PI, false);
+        radians(Parse::bounded_double(prm, path, "dilation angle", 0, phi));
       return s;
+    }
+
+
+    double
+    friction_angle_degrees(const ParameterHandler &prm, const std::string &path)
+    {
+      return Parse::bounded_double(
+        prm, path, "friction angle", 0, 90, false, true);
     }
 
 

@@ -149,18 +149,15 @@ namespace mpm
           {
             residual.c =
               Parse::bounded_double(prm, path, "residual cohesion", 0, peak.c);
-            residual.phi    = parse_angle(prm,
-                                       path,
-                                       "residual friction angle",
-                                       0,
-                                       peak.phi * 180 / M_PI,
-                                       false);
-            residual.psi    = parse_angle(prm,
-                                       path,
-                                       "residual dilation angle",
-                                       0,
-                                       residual.phi * 180 / M_PI,
-                                       false);
+            const double phi =
+              Parse::bounded_double(prm,
+                                    path,
+                                    "residual friction angle",
+                                    0,
+                                    friction_angle_degrees(prm, path));
+            residual.phi    = radians(phi);
+            residual.psi    = radians(Parse::bounded_double(
+              prm, path, "residual dilation angle", 0, phi));
             residual_strain = Parse::bounded_double(
               prm, path, "residual plastic strain", 0, 1e300, true);
           }

@@ -585,14 +585,19 @@ namespace mpm
     };
 
 
-    /// An angle in degrees in [lower, upper) (or [lower, upper]), in radians.
+    /// An angle given in degrees, in radians.
+    inline double
+    radians(const double degrees)
+    {
+      return degrees * M_PI / 180.;
+    }
+
+    /// 'friction angle' in degrees, in [0, 90). Dilation angles are bounded
+    /// by it in degrees, as given: phi * 180 / pi would round 30 to
+    /// 29.999999999999996 and reject associated flow (psi = phi).
     double
-    parse_angle(const ParameterHandler &prm,
-                const std::string      &path,
-                const std::string      &name,
-                const double            lower,
-                const double            upper,
-                const bool              upper_open = true);
+    friction_angle_degrees(const ParameterHandler &prm,
+                           const std::string      &path);
 
     /// 'tension cutoff': 'apex' (none beyond the cone's apex, returned as
     /// +infinity) or a number >= 0.
