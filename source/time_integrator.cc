@@ -1400,7 +1400,8 @@ namespace mpm
    * energy until the energy guard stopped it, or not, depending on where
    * the output times cut the steps (two disks; benchmarks/contact).
    * At a node lighter than the small-mass threshold the point's own
-   * increment dv_p = sum_I phi_I dv_I stands in for the node's: C_p still
+   * increment @p dv_point = sum_I phi_I dv_I (the gather's FLIP
+   * increment) stands in for the node's: C_p still
    * reproduces any affine transferred field and any uniform acceleration,
    * and v_p is unchanged, so momentum is too. A node without mass has no
    * velocity at all, yet it is in the stencil of a point that lies on its
@@ -1420,24 +1421,20 @@ namespace mpm
     const unsigned int                         stride,
     const std::array<Tensor<1, dim>, n_nodes> &affine,
     const Tensor<1, dim>                      &v_point,
+    const Tensor<1, dim>                      &dv_point,
     Tensor<2, dim>                            &C) const
   {
-    const auto increment = [&](const unsigned int v) {
-      const double *node = u + stride * s.nodes[v];
-      return Fields::vector<dim>(node + v_new) -
-             Fields::vector<dim>(node + v_old);
-    };
-    Tensor<1, dim> dv_point;
-    for (unsigned int v = 0; v < n_nodes; ++v)
-      dv_point += s.weights[v] * increment(v);
     for (unsigned int v = 0; v < n_nodes; ++v)
       {
         const double *node = u + stride * s.nodes[v];
-        if (node[node_mass] == 0)
-          C -= outer_product(Fields::vector<dim>(node + v_new) - v_point,
-                             affine[v]);
-        else if (is_light(node))
-          C -= outer_product(increment(v) - dv_point, affine[v]);
+        if (!is_light(node))
+          continue;
+        const Tensor<1, dim> v_I = Fields::vector<dim>(node + v_new);
+        C -=
+          outer_product(node[node_mass] == 0
+                          ? v_I - v_point
+                          : v_I - Fields::vector<dim>(node + v_old) - dv_point,
+                        affine[v]);
       }
   }
 
@@ -1477,8 +1474,10 @@ namespace mpm
             const double        *node = u + stride * s.nodes[v];
             const Tensor<1, dim> b    = Fields::vector<dim>(node + v_new);
             v_grid += s.weights[v] * b;
-            // FLIP's velocity increment; APIC does not use it.
-            if constexpr (!decltype(apic)::value)
+            // FLIP's velocity increment; APIC uses it only for the light
+            // nodes of the linear basis (discount_light_node_increments).
+            if constexpr (!decltype(apic)::value ||
+                          !Basis::gradient_vanishes_with_weight)
               dv_grid += s.weights[v] * (b - Fields::vector<dim>(node + v_old));
           }
         if constexpr (decltype(apic)::value)
@@ -1488,7 +1487,8 @@ namespace mpm
             Tensor<2, dim> C =
               apic_velocity_gradient<dim>(basis, s, u, stride, v_new, affine);
             if constexpr (!Basis::gradient_vanishes_with_weight)
-              discount_light_node_increments(s, u, stride, affine, v_grid, C);
+              discount_light_node_increments(
+                s, u, stride, affine, v_grid, dv_grid, C);
             Fields::store(C, q + l.affine_velocity);
           }
         else if (newmark)

@@ -421,8 +421,9 @@ namespace mpm
       return node[node_mass] <= min_nodal_mass;
     }
     /// APIC's C_p (in @p C, from v_new) with the linear basis: the light
-    /// nodes' force increments replaced by the point's, and massless nodes'
-    /// velocities by the point's velocity @p v_point (see there).
+    /// nodes' force increments replaced by the point's, @p dv_point, and
+    /// massless nodes' velocities by the point's velocity @p v_point (see
+    /// there).
     template <typename Stencil, std::size_t n_nodes>
     void
     discount_light_node_increments(
@@ -431,6 +432,7 @@ namespace mpm
       const unsigned int                         stride,
       const std::array<Tensor<1, dim>, n_nodes> &affine,
       const Tensor<1, dim>                      &v_point,
+      const Tensor<1, dim>                      &dv_point,
       Tensor<2, dim>                            &C) const;
     /// Store L, update volume and F by I + dt L; note a failure if the
     /// point would invert.
