@@ -49,13 +49,22 @@ def run(exe, a, n, end_time, extra):
         "-s", "Bodies/Body 0/upper corner=%.17g, %.17g" % (L0, a * L0),
         "-s", "Output/interval=%g" % (end_time / 20)] + extra, frame=-1)
     rows = r.rows
-    spacing = h / 2  # 2 points per cell and direction
+    spacing = h / points_per_cell(extra)
     front = float(rows[-1]["body0_x_max"]) + spacing / 2
     thick = thick_front(r.points, spacing, 0.1 * a * L0)
     potential = float(rows[0]["gravitational_energy"]) - \
         float(rows[-1]["gravitational_energy"])
     rest = float(rows[-1]["kinetic_energy"]) / max(potential, 1e-300)
     return ((front - L0) / L0, (thick - L0) / L0, rest) + cost(r)
+
+
+def points_per_cell(extra):
+    """Points per cell and direction: the scene's 2 unless overridden."""
+    n = 2
+    for a, b in zip(extra, extra[1:]):
+        if a == "-s" and b.startswith("Bodies/Body 0/particles per cell="):
+            n = int(b.split("=", 1)[1])
+    return n
 
 
 def thick_front(points, spacing, thickness):
