@@ -903,8 +903,7 @@ add_test(NAME hdf5_output_mpi2
   COMMAND ${h5py_python} ${CMAKE_CURRENT_SOURCE_DIR}/hdf5_output.py
     --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/two_disks.prm --np 2
     -s "Simulation/end time=0.6" -s "Output/interval=0.1")
-set_tests_properties(hdf5_output_mpi2 PROPERTIES PROCESSORS 2
-  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+set_tests_properties(hdf5_output_mpi2 PROPERTIES PROCESSORS 2)
 mpm_test(bad_hdf5_in_1d PRM vibrating_bar.prm EXIT 1
   ARGS -s "Output/particle format=HDF5"
   ERROR "parameter 'Output/particle format' = 'HDF5': needs dimension 2 or 3")
