@@ -894,38 +894,6 @@ namespace mpm
 
 
   template <int dim>
-  std::vector<std::pair<Point<dim>, Point<dim>>>
-  MaterialPoints<dim>::body_extents() const
-  {
-    const unsigned int n_bodies = body_list.size();
-    const double       inf      = std::numeric_limits<double>::infinity();
-    // Minima of x and of -x, so that one reduction gives both ends.
-    std::vector<double> lowest(2 * dim * n_bodies, inf);
-    for (const auto &p : particles)
-      {
-        const unsigned int b = p.get_properties()[fields.body];
-        const Point<dim>  &x = p.get_location();
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            lowest[2 * dim * b + d] = std::min(lowest[2 * dim * b + d], x[d]);
-            lowest[2 * dim * b + dim + d] =
-              std::min(lowest[2 * dim * b + dim + d], -x[d]);
-          }
-      }
-    MPI_Allreduce(
-      MPI_IN_PLACE, lowest.data(), lowest.size(), MPI_DOUBLE, MPI_MIN, comm);
-    std::vector<std::pair<Point<dim>, Point<dim>>> boxes(n_bodies);
-    for (unsigned int b = 0; b < n_bodies; ++b)
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          boxes[b].first[d]  = lowest[2 * dim * b + d];
-          boxes[b].second[d] = -lowest[2 * dim * b + dim + d];
-        }
-    return boxes;
-  }
-
-
-  template <int dim>
   types::particle_index
   MaterialPoints<dim>::relocate(const OutOfGridPolicy policy)
   {

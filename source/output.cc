@@ -61,10 +61,33 @@ namespace mpm
       "body extents",
       "false",
       Patterns::Bool(),
-      "true or false: add to statistics.csv the box around each body's "
-      "material points, columns body<b>_<axis>_min and _max (the points' "
-      "positions: the body's edge lies about half a point spacing "
-      "further out). For runout, length and spread.");
+      "true or false: add to statistics.csv where each body reaches: the "
+      "box around its material points, columns body<b>_<axis>_min and "
+      "_max (the points' positions: the body's edge lies about half a "
+      "point spacing further out), the fronts of 'front percentile' "
+      "(_front_min, _front_max) and, with a 'front thickness', the "
+      "deposit's edges (_deposit_min, _deposit_max). For runout, length "
+      "and spread.");
+    prm.declare_entry(
+      "front percentile",
+      "99",
+      Patterns::Anything(),
+      "With 'body extents': the columns body<b>_<axis>_front_min and "
+      "_front_max are the positions that this percentage of a body's "
+      "points do not pass (within 1/64 of a cell), in [50, 100]; 100 is "
+      "the furthest point. A runout front that a few points thrown ahead "
+      "of the body cannot move.");
+    prm.declare_entry(
+      "front thickness",
+      "0",
+      Patterns::Anything(),
+      "With 'body extents' and gravity along a grid axis: > 0 adds, for "
+      "each other axis, columns body<b>_<axis>_deposit_min and _max, the "
+      "furthest edges of a body where it is at least this thick along "
+      "gravity, in m (in each column of grid cells, from the lowest "
+      "bottom to the highest top of the body's points, each a cube of its "
+      "volume; the edge is that of the outermost point of such a column). "
+      "0: none.");
     prm.declare_entry("progress interval",
                       "2",
                       Patterns::Anything(),
@@ -93,6 +116,10 @@ namespace mpm
     grid_output  = prm.get_bool("grid output");
     hdf5         = prm.get("particle format") == "HDF5";
     body_extents = prm.get_bool("body extents");
+    front_percentile =
+      Parse::bounded_double(prm, "Output", "front percentile", 50, 100);
+    front_thickness =
+      Parse::bounded_double(prm, "Output", "front thickness", 0, 1e300);
     replace_existing = prm.get("existing output") == "replace";
     progress_interval =
       Parse::bounded_double(prm, "Output", "progress interval", 0, 1e300);

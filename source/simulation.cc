@@ -289,11 +289,17 @@ namespace mpm
       for (const std::string c : {"macro_steps", "macro_mismatch"})
         columns.push_back(c);
     if (output_parameters.body_extents)
-      for (unsigned int b = 0; b < body_parameters.size(); ++b)
-        for (unsigned int d = 0; d < dim; ++d)
-          for (const std::string end : {"_min", "_max"})
-            columns.push_back("body" + std::to_string(b) + "_" + "xyz"[d] +
-                              end);
+      {
+        extents =
+          std::make_unique<BodyExtents<dim>>(*grid,
+                                             integrator_parameters.gravity,
+                                             output_parameters.front_percentile,
+                                             output_parameters.front_thickness,
+                                             body_parameters.size(),
+                                             comm);
+        for (const auto &c : extents->columns())
+          columns.push_back(c);
+      }
     output           = std::make_unique<Output<dim>>(output_parameters,
                                            *grid,
                                            *points,
@@ -440,13 +446,9 @@ namespace mpm
         extra.push_back(integrator->macro_step_number());
         extra.push_back(integrator->largest_macro_mismatch());
       }
-    if (output_parameters.body_extents)
-      for (const auto &[lower, upper] : points->body_extents())
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            extra.push_back(lower[d]);
-            extra.push_back(upper[d]);
-          }
+    if (extents)
+      for (const double x : extents->values(*points))
+        extra.push_back(x);
     output->write(s, extra, wall_seconds);
     last_output_time = integrator->time();
   }

@@ -1489,7 +1489,8 @@ namespace mpm
             if constexpr (!Basis::gradient_vanishes_with_weight)
               discount_light_node_increments(
                 s, u, stride, affine, v_grid, dv_grid, C);
-            Fields::store(C, q + l.affine_velocity);
+            Fields::store(advected_affine_velocity(C, dt),
+                          q + l.affine_velocity);
           }
         else if (newmark)
           {

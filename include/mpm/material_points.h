@@ -254,11 +254,6 @@ namespace mpm
       return n_repacks;
     }
 
-    /// The box around each body's points, over all ranks (collective).
-    /// A body with no points left gets an empty box (+inf, -inf).
-    std::vector<std::pair<Point<dim>, Point<dim>>>
-    body_extents() const;
-
     /// Smallest point mass in the scene (for the small-mass guard).
     double
     min_particle_mass() const

@@ -36,8 +36,13 @@ namespace mpm
     /// Particles as HDF5 + XDMF (one .h5 per output time, written by all
     /// ranks through MPI-IO) instead of VTU.
     bool hdf5;
-    /// Columns with the box around each body's points (runout, length).
+    /// Columns with where each body reaches (runout, length; see
+    /// BodyExtents): the box around its points, the front of
+    /// front_percentile % of them, and with front_thickness > 0 the edges
+    /// of the deposit at least that thick.
     bool   body_extents;
+    double front_percentile;
+    double front_thickness;
     double progress_interval; ///< wall seconds
     /// Remove an earlier run's output from the directory (else refuse).
     bool replace_existing;

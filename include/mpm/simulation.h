@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/background_grid.h>
+#include <mpm/bodies/extents.h>
 #include <mpm/energy_guard.h>
 #include <mpm/material_points.h>
 #include <mpm/output.h>
@@ -96,6 +97,7 @@ namespace mpm
     std::unique_ptr<TimeIntegrator<dim>>         integrator;
     std::unique_ptr<Verification<dim>>           verification;
     std::unique_ptr<EnergyGuard<dim>>            energy_guard;
+    std::unique_ptr<BodyExtents<dim>>            extents; ///< if asked for
     std::unique_ptr<Output<dim>>                 output;
     double                                       last_output_time = -1;
     double next_checkpoint_time = 0, last_checkpoint_wall = 0;
