@@ -393,6 +393,11 @@ mpm_test(bad_front_percentile PRM body_fronts.prm EXIT 1
 add_test(NAME free_expansion
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/free_expansion.py
     --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/free_expansion.prm)
+#    A frictional body with FLIP's PIC share is told at the start that the
+#    share shortens granular runouts (benchmarks/granular/README.md).
+mpm_test(column_collapse_flip_warns PRM ../benchmarks/granular/column_collapse.prm
+  ARGS -s "Simulation/transfer=FLIP" -s "Simulation/end time=0.01"
+  OUTPUT "warning: body 0 is frictional .Mohr-Coulomb. and the transfer is FLIP with a PIC share of 0.01: it acts on shear bands like a viscosity")
 #    Friction floor (Coulomb): a sliding block decelerates at mu g and stops
 #    after v0^2 / (2 mu g), both within 2 % (measured: 1e-4 and 5e-4).
 add_test(NAME sliding_block_friction

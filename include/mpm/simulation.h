@@ -56,6 +56,9 @@ namespace mpm
     scheme_description() const;
     void
     warn_of_volumetric_locking() const;
+    /// Frictional bodies with FLIP's PIC share (see there).
+    void
+    warn_of_pic_viscosity() const;
     void
     print_performance(const double wall_seconds,
                       const double step_seconds) const;
