@@ -393,6 +393,18 @@ mpm_test(bad_front_percentile PRM body_fronts.prm EXIT 1
 add_test(NAME free_expansion
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/free_expansion.py
     --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/free_expansion.prm)
+#    A sheared cohesionless layer on a Coulomb floor (4 cells across): the
+#    floor takes mu times the weight while it slides (deceleration within
+#    2 % of mu g; measured 0.3 %), and the layer's own friction takes out
+#    the shear as the converged runs do (difference between its halves at
+#    t = 0.04 s in [0.24, 0.30] m/s; measured 0.282 and 0.291; FLIP 0.99:
+#    0.009, its PIC share's viscosity).
+foreach(basis "quadratic B-spline" "cubic B-spline")
+  string(REPLACE " " "_" tag "${basis}")
+  add_test(NAME sheared_layer_${tag}
+    COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/granular/sheared_layer.py
+      --exe $<TARGET_FILE:dealii-mpm> --cells 4 --check -s "Simulation/basis=${basis}")
+endforeach()
 #    A frictional body with FLIP's PIC share is told at the start that the
 #    share shortens granular runouts (benchmarks/granular/README.md).
 mpm_test(column_collapse_flip_warns PRM ../benchmarks/granular/column_collapse.prm

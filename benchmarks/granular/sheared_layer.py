@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""A sheared cohesionless layer sliding on a Coulomb floor
+(benchmarks/granular/sheared_layer.prm), with the layer over --cells cells.
+
+Prints one CSV row per run: the cells across the layer, the mean velocity's
+deceleration between t = 0.02 and 0.1 s against mu g (the floor takes mu
+times the weight while the layer slides), and the velocity difference
+between the layer's upper and lower half at t = 0.02, ..., 0.1 s. The
+difference is the shear the layer's own friction takes out; APIC converges
+to it (about 0.39, 0.27, 0.17, 0.09, 0.03 m/s, README.md), FLIP with a PIC
+share takes it out faster on every grid (a numerical viscosity).
+
+  sheared_layer.py --exe build/dealii-mpm --cells 1,2,4,8 [-s ...]
+  sheared_layer.py --exe ... --cells 4 --check      a ctest: deceleration
+      within 2 % of mu g, and at t = 0.04 s a difference of 0.24-0.30 m/s
+"""
+import argparse, os, sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
+
+H, MU, G = 0.005, 0.3, 9.81
+
+
+def run(exe, k, extra):
+    h = H / k
+    r = run_scene(exe, "granular/sheared_layer.prm", [
+        "-s", "Grid/upper corner=0.5, %.17g" % (H + 4 * h),
+        "-s", "Grid/cells=%d, %d" % (round(0.5 / h), k + 4)] + extra,
+        frame="all", fields="velocity", frame_fields=("velocity",))
+    speed = [float(row["momentum_x"]) / float(row["mass"]) for row in r.rows]
+    deceleration = (speed[1] - speed[5]) / 0.08
+    shear = []
+    for points, fields in zip(r.points, r.fields):
+        v = fields["velocity"]
+        top = [u[0] for p, u in zip(points, v) if p[1] >= H / 2]
+        low = [u[0] for p, u in zip(points, v) if p[1] < H / 2]
+        shear.append(sum(top) / len(top) - sum(low) / len(low))
+    return deceleration, shear[1:6]
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    sweep_arguments(parser)
+    parser.add_argument("--cells", default="1,2,4,8")
+    parser.add_argument("--check", action="store_true")
+    a = parser.parse_args()
+    print("cells_across,deceleration,mu_g,error,shear_0.02,shear_0.04,"
+          "shear_0.06,shear_0.08,shear_0.1")
+    ok = True
+    for k in [int(x) for x in a.cells.split(",")]:
+        deceleration, shear = run(a.exe, k, overrides(a))
+        error = deceleration / (MU * G) - 1
+        print("%d,%.4f,%.4f,%.2e,%s" % (k, deceleration, MU * G, error,
+                                        ",".join("%.3f" % x for x in shear)),
+              flush=True)
+        ok = ok and abs(error) <= 0.02 and 0.24 <= shear[1] <= 0.30
+    if a.check and not ok:
+        print("FAILED: the deceleration is off by more than 2 % or the "
+              "shear at t = 0.04 s is outside [0.24, 0.30] m/s")
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
