@@ -432,6 +432,27 @@ namespace mpm
       }
       std::filesystem::rename(file + ".tmp", file);
     }
+
+    /// The .xdmf of a frame without points: its time, no geometry.
+    void
+    write_empty_xdmf(const std::string &file, const double time)
+    {
+      std::ofstream out(file);
+      out << "<?xml version=\"1.0\" ?>\n"
+          << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+          << "<Xdmf Version=\"2.0\">\n"
+          << "  <Domain>\n"
+          << "    <Grid Name=\"CellTime\" GridType=\"Collection\" "
+             "CollectionType=\"Temporal\">\n"
+          << "      <Grid Name=\"mesh\" GridType=\"Uniform\">\n"
+          << "        <Time Value=\"" << time << "\"/>\n"
+          << "        <Topology TopologyType=\"Polyvertex\" "
+             "NumberOfElements=\"0\"/>\n"
+          << "      </Grid>\n"
+          << "    </Grid>\n"
+          << "  </Domain>\n"
+          << "</Xdmf>\n";
+    }
   } // namespace
 
 
@@ -759,7 +780,7 @@ namespace mpm
           }
         out.patches.push_back(std::move(patch));
       }
-    write_hdf5_files(out, "particles", particle_files);
+    write_hdf5_files(out, out.patches.size(), "particles", particle_files);
   }
 
 
@@ -824,25 +845,54 @@ namespace mpm
   }
 
 
+  /**
+   * deal.II 9.4 hands HDF5 a null buffer for a rank without points, which
+   * HDF5 refuses ('no output buffer') while the other ranks wait in the
+   * collective write: a 3D block on 2 ranks, one of them empty, hung. So
+   * only the ranks that have points write the .h5 and the .xdmf, on a
+   * communicator of their own; a frame without any point gets an .xdmf of
+   * no points and no .h5.
+   */
   template <int dim>
   void
   Output<dim>::write_hdf5_files(
     DataOutInterface<0, dim>                    &out,
+    const std::size_t                            n_local_points,
     const std::string                           &base,
     std::vector<std::pair<double, std::string>> &records)
   {
-    // Points are not merged (no duplicate vertices to filter); the data
-    // are written with every component of a vector or tensor together.
-    DataOutBase::DataOutFilter filter(
-      DataOutBase::DataOutFilterFlags(false, true));
-    out.write_filtered_data(filter);
     const std::string frame = base + "_" + Utilities::int_to_string(counter, 5);
     const std::string partial_directory = prm.directory + "/" + partial + "/";
-    out.write_hdf5_parallel(filter, partial_directory + frame + ".h5", comm);
-    // The frame's .xdmf names its .h5 relative to itself.
-    const std::vector<XDMFEntry> entry = {
-      out.create_xdmf_entry(filter, frame + ".h5", integrator.time(), comm)};
-    out.write_xdmf_file(entry, partial_directory + frame + ".xdmf", comm);
+    const bool        writes            = n_local_points > 0;
+    const std::size_t n_points = Utilities::MPI::sum(n_local_points, comm);
+    MPI_Comm          writers;
+    MPI_Comm_split(comm,
+                   writes ? 0 : MPI_UNDEFINED,
+                   Utilities::MPI::this_mpi_process(comm),
+                   &writers);
+    if (writes)
+      {
+        // Points are not merged (no duplicate vertices to filter); the
+        // data are written with every component of a vector or tensor
+        // together.
+        DataOutBase::DataOutFilter filter(
+          DataOutBase::DataOutFilterFlags(false, true));
+        out.write_filtered_data(filter);
+        out.write_hdf5_parallel(filter,
+                                partial_directory + frame + ".h5",
+                                writers);
+        // The frame's .xdmf names its .h5 relative to itself.
+        const std::vector<XDMFEntry> entry = {out.create_xdmf_entry(
+          filter, frame + ".h5", integrator.time(), writers)};
+        out.write_xdmf_file(entry,
+                            partial_directory + frame + ".xdmf",
+                            writers);
+        MPI_Comm_free(&writers);
+      }
+    else if (is_root && n_points == 0)
+      write_empty_xdmf(partial_directory + frame + ".xdmf", integrator.time());
+    // The files are complete before the root moves them.
+    MPI_Barrier(comm);
     if (is_root)
       {
         publish_frame(frame + ".xdmf");

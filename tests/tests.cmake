@@ -939,6 +939,22 @@ add_test(NAME hdf5_output_mpi2
     --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/two_disks.prm --np 2
     -s "Simulation/end time=0.6" -s "Output/interval=0.1")
 set_tests_properties(hdf5_output_mpi2 PROPERTIES PROCESSORS 2)
+#    A rank without points (the 3D block on 2 ranks: HDF5 hung in deal.II
+#    9.4's collective write) and frames without points (the disk thrown out
+#    of the grid, 'remove': deal.II's generic I/O error before), in HDF5 and
+#    VTU alike, on 1 and 2 ranks.
+add_test(NAME hdf5_output_empty_rank_3d_mpi2
+  COMMAND ${h5py_python} ${CMAKE_CURRENT_SOURCE_DIR}/hdf5_output.py
+    --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/block_3d.prm
+    --np 2 --dim 3 -s "Simulation/end time=0.02" -s "Output/interval=0.01")
+foreach(np 1 2)
+  add_test(NAME hdf5_output_empty_frames_np${np}
+    COMMAND ${h5py_python} ${CMAKE_CURRENT_SOURCE_DIR}/hdf5_output.py
+      --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/leaving_grid.prm
+      --np ${np} --empty-frames 2 -s "Simulation/out of grid=remove")
+endforeach()
+set_tests_properties(hdf5_output_empty_rank_3d_mpi2 hdf5_output_empty_frames_np2
+  PROPERTIES PROCESSORS 2)
 mpm_test(bad_hdf5_in_1d PRM vibrating_bar.prm EXIT 1
   ARGS -s "Output/particle format=HDF5"
   ERROR "parameter 'Output/particle format' = 'HDF5': needs dimension 2 or 3")

@@ -151,8 +151,9 @@ namespace mpm
     /// The HDF5 file of @p out at this time with its XDMF description, and
     /// the XDMF collection @p base.xdmf of all times.
     void
-    write_hdf5_files(DataOutInterface<0, dim>                    &out,
-                     const std::string                           &base,
+    write_hdf5_files(DataOutInterface<0, dim> &out,
+                     const std::size_t         n_local_points,
+                     const std::string        &base,
                      std::vector<std::pair<double, std::string>> &records);
     /// Move the files of @p name (the partial directory's, @p name last)
     /// into the output directory (root only).
