@@ -87,6 +87,14 @@ namespace mpm
                   const double                     t,
                   const double                     dt);
 
+    /// The wall's speed: the time step must let no point cross it in a
+    /// step (TimeIntegrator::stable_time_step).
+    double
+    speed() const
+    {
+      return prm.velocity.norm();
+    }
+
     /// Statistics columns: "wall<N>_force_x", ...
     std::vector<std::string>
     columns() const;
