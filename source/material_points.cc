@@ -631,8 +631,10 @@ namespace mpm
 
   template <int dim>
   void
-  MaterialPoints<dim>::generate(const bool may_overlap)
+  MaterialPoints<dim>::generate(const bool                   may_overlap,
+                                const std::array<double, 2> &J_bounds)
   {
+    this->J_bounds = J_bounds;
     std::string        overlap;
     const FieldLayout &l             = fields;
     bool               any_displaced = false;
@@ -821,26 +823,82 @@ namespace mpm
     if (stress != nullptr)
       for (unsigned int c = 0; c < stress->n_components; ++c)
         sigma0[rows[c]][cols[c]] = stress->value(x, c);
+    // Raised collectively after generation (one rank alone must not stop).
+    const auto note_failure = [&](const std::string &reason) {
+      if (!state_failure.empty())
+        return;
+      std::ostringstream where;
+      where << "the stress (" << sigma0 << ") at (" << x << ") " << reason;
+      std::string text;
+      for (const auto &e : body.initial_stress)
+        text += (text.empty() ? "" : "; ") + e;
+      state_failure =
+        InputError(body.name + "/initial stress", text, where.str()).what();
+    };
+    if (!(sigma0.norm() <= largest_input))
+      return note_failure("is infinite or beyond 1e15 Pa");
     try
       {
-        if (!(sigma0.norm() <= largest_input))
-          throw std::domain_error("is infinite or beyond 1e15 Pa");
         body.material->initialise_point(properties, fields, sigma0);
       }
     catch (const std::domain_error &e)
       {
-        std::ostringstream where;
-        where << "the stress (" << sigma0 << ") at (" << x << ") " << e.what();
-        if (sigma0.norm() <= largest_input)
-          where << " of '" << body.material_name << "'";
-        std::string text;
-        for (const auto &e : body.initial_stress)
-          text += (text.empty() ? "" : "; ") + e;
-        // Raised collectively after generation (one rank alone must not
-        // stop).
-        if (state_failure.empty())
-          state_failure =
-            InputError(body.name + "/initial stress", text, where.str()).what();
+        return note_failure(std::string(e.what()) + " of '" +
+                            body.material_name + "'");
+      }
+    // A stress-free state is one every model carries.
+    if (stress == nullptr)
+      return;
+    try
+      {
+        check_initial_state(body, properties);
+      }
+    catch (const std::domain_error &e)
+      {
+        note_failure(e.what());
+      }
+  }
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::check_initial_state(const BodyParameters<dim> &body,
+                                           const double *properties) const
+  {
+    // What the first step would stop on, blaming the time step, is caught
+    // here where the input can be named: a stress too large for the
+    // material's stiffness overflows its elastic strain (log strain:
+    // exp(sigma / E)), and a fluid's density follows from its pressure.
+    const std::string material = "'" + body.material_name + "'";
+    const std::string stiffness =
+      body.material->stiffness_parameters().empty()
+        ? ""
+        : ": the stress is too large for its stiffness, " +
+            body.material->stiffness_parameters();
+    bool finite = true;
+    for (unsigned int i = 0; i < fields.n_properties; ++i)
+      finite = finite && std::isfinite(properties[i]);
+    if (!finite)
+      throw std::domain_error("gives " + material +
+                              " a state that is not finite" + stiffness);
+    std::ostringstream s;
+    const double energy = body.material->strain_energy(properties, fields);
+    if (!std::isfinite(energy))
+      {
+        s << "gives " << material << " a strain energy of " << energy
+          << stiffness;
+        throw std::domain_error(s.str());
+      }
+    if (body.rigid_velocity)
+      return;
+    const double J =
+      properties[fields.volume] * body.density / properties[fields.mass];
+    if (!(J >= J_bounds[0] && J <= J_bounds[1]))
+      {
+        s << "gives " << material << " a volume ratio J = V / V0 = " << J
+          << ", outside 'Simulation/J bounds' [" << J_bounds[0] << ", "
+          << J_bounds[1] << "]" << stiffness;
+        throw std::domain_error(s.str());
       }
   }
 

@@ -67,7 +67,8 @@ namespace mpm
       "point spacing further out), the fronts of 'front percentile' "
       "(_front_min, _front_max) and, with a 'front thickness', the "
       "deposit's edges (_deposit_min, _deposit_max). For runout, length "
-      "and spread.");
+      "and spread. A body without points (or without a deposit) leaves "
+      "its fields empty.");
     prm.declare_entry(
       "front percentile",
       "99",
@@ -553,8 +554,14 @@ namespace mpm
             f << "," << s.angular_momentum[d];
         f << "," << s.mass << "," << s.n_particles << ","
           << integrator.n_removed_particles();
+        // Only a body's extents can be missing (a body without points);
+        // their fields stay empty rather than hold inf.
         for (const double e : extra)
-          f << "," << e;
+          {
+            f << ",";
+            if (std::isfinite(e))
+              f << e;
+          }
         f << "," << std::setprecision(4) << wall_seconds << std::endl;
       }
     write_particles();

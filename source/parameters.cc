@@ -85,6 +85,15 @@ namespace mpm
     } // namespace
 
 
+    std::string
+    given(const ParameterHandler &prm,
+          const std::string      &path,
+          const std::string      &name)
+    {
+      return "'" + join(path, name) + "' = '" + prm.get(name) + "'";
+    }
+
+
     double
     bounded_double(const ParameterHandler &prm,
                    const std::string      &path,

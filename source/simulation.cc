@@ -219,7 +219,9 @@ namespace mpm
                                                    fields,
                                                    comm);
     if (resume == nullptr)
-      points->generate(bodies_may_overlap);
+      points->generate(bodies_may_overlap,
+                       {{integrator_parameters.J_min,
+                         integrator_parameters.J_max}});
     else
       {
         // The scene must store the same fields (deal.II would read the
@@ -300,7 +302,8 @@ namespace mpm
         for (const auto &c : extents->columns())
           columns.push_back(c);
       }
-    output           = std::make_unique<Output<dim>>(output_parameters,
+    statistics_columns = columns;
+    output             = std::make_unique<Output<dim>>(output_parameters,
                                            *grid,
                                            *points,
                                            *integrator,
@@ -308,7 +311,7 @@ namespace mpm
                                            columns,
                                            comm,
                                            resume.get());
-    setup_peak_bytes = peak_memory_bytes();
+    setup_peak_bytes   = peak_memory_bytes();
     print_scene_summary();
     if (resume == nullptr)
       write_output(wall.wall_time());
@@ -424,10 +427,6 @@ namespace mpm
     auto extra = verification->evaluate(s, integrator->time());
     if (integrator->time() == last_output_time)
       return;
-    // Before anything is written: a run that fails keeps its last good
-    // output.
-    const auto [work, absolute_work] = integrator->external_work();
-    energy_guard->check(s, work, absolute_work, integrator->time());
     for (const double f :
          velocity_region->mean_force_since_last_call(integrator->time(), comm))
       extra.push_back(f);
@@ -446,11 +445,56 @@ namespace mpm
         extra.push_back(integrator->macro_step_number());
         extra.push_back(integrator->largest_macro_mismatch());
       }
+    // Before anything is written: a run that fails keeps its last good
+    // output.
+    stop_if_not_finite(s, extra);
+    const auto [work, absolute_work] = integrator->external_work();
+    energy_guard->check(s, work, absolute_work, integrator->time());
+    // A body without points (or without a deposit) has no extents: the
+    // writer leaves their fields empty.
     if (extents)
       for (const double x : extents->values(*points))
         extra.push_back(x);
     output->write(s, extra, wall_seconds);
     last_output_time = integrator->time();
+  }
+
+
+  /**
+   * statistics.csv holds numbers: a value that is not finite means the
+   * run has gone wrong in a way the step's checks on the points did not
+   * see (they test velocity, stress and volume; an energy can overflow
+   * from a finite state). Stopped collectively, naming the column.
+   */
+  template <int dim>
+  void
+  Simulation<dim>::stop_if_not_finite(const Statistics<dim>     &s,
+                                      const std::vector<double> &extra) const
+  {
+    std::vector<std::pair<std::string, double>> values = {
+      {"kinetic_energy", s.kinetic_energy},
+      {"strain_energy", s.strain_energy},
+      {"gravitational_energy", s.gravitational_energy},
+      {"mass", s.mass}};
+    for (unsigned int d = 0; d < dim; ++d)
+      values.emplace_back(std::string("momentum_") + "xyz"[d], s.momentum[d]);
+    for (unsigned int d = 0; d < s.angular_momentum.dimension; ++d)
+      values.emplace_back("angular_momentum", s.angular_momentum[d]);
+    for (unsigned int c = 0; c < extra.size(); ++c)
+      values.emplace_back(statistics_columns[c], extra[c]);
+    std::string failure;
+    for (const auto &[name, value] : values)
+      if (!std::isfinite(value))
+        {
+          std::ostringstream msg;
+          msg << "t = " << integrator->time() << ": the statistics column '"
+              << name << "' is " << value
+              << "; the run is unstable (try a smaller CFL number, MUSL, or "
+                 "damping)";
+          failure = msg.str();
+          break;
+        }
+    raise_if_any_failed(failure, comm);
   }
 
 

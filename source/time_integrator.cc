@@ -315,6 +315,9 @@ namespace mpm
         // A rigid body's material is not used: no wave crosses it.
         wave_modulus_of_body.push_back(
           body.rigid_velocity ? 0. : body.material->p_wave_modulus());
+        wave_modulus_pressure_slope_of_body.push_back(
+          body.rigid_velocity ? 0.
+                              : body.material->wave_modulus_pressure_slope());
         fixed_inverse_density_of_body.push_back(
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
         // A rigid body's points keep their volume: no guard.
@@ -575,8 +578,15 @@ namespace mpm
         const SymmetricTensor<2, dim> s = Fields::symmetric<dim>(q + l.stress);
         const unsigned int            b = q[l.body];
         const double                  inverse_density = q[l.volume] / q[l.mass];
+        // A stiffness that grows with the pressure (the Tait fluid) counts
+        // the point's pressure; under tension the modulus at rest bounds
+        // it from above.
+        const double pressure = -trace(s) / dim;
+        const double modulus =
+          wave_modulus_of_body[b] +
+          wave_modulus_pressure_slope_of_body[b] * std::max(pressure, 0.);
         // With mass scaling the waves see s rho.
-        const double c2 = wave_modulus_of_body[b] *
+        const double c2 = modulus *
                           (fixed_inverse_density_of_body[b] > 0
                              ? fixed_inverse_density_of_body[b]
                              : inverse_density) /

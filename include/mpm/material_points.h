@@ -12,6 +12,8 @@
 #include <mpm/field_layout.h>
 #include <mpm/materials/material.h>
 
+#include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -191,9 +193,13 @@ namespace mpm
       return body_list;
     }
 
-    /// Fill every body with points; fails if a body gets none.
+    /// Fill every body with points; fails if a body gets none, or if an
+    /// initial stress gives a point a state outside @p J_bounds (the run's
+    /// guard on V / V0) or one that is not finite.
     void
-    generate(const bool may_overlap = false);
+    generate(const bool                   may_overlap = false,
+             const std::array<double, 2> &J_bounds    = {
+                  {0., std::numeric_limits<double>::infinity()}});
 
     /// Instead of generate(): take the points back from the checkpoint the
     /// grid was loaded from, with the smallest point mass of the
@@ -273,6 +279,11 @@ namespace mpm
                      FunctionParser<dim>       *stress,
                      const Point<dim>          &x,
                      double                    *properties);
+    /// Throw a std::domain_error if the state a point of @p body starts
+    /// with is one the first step would stop on.
+    void
+    check_initial_state(const BodyParameters<dim> &body,
+                        const double              *properties) const;
     /// Apply the initial displacement to the point with reference position
     /// @p X and properties @p properties (F, volume); return where it starts.
     /// A displacement that inverts the body or moves the point out of the
@@ -339,6 +350,7 @@ namespace mpm
     types::particle_index   appended_since_repack  = 0;
     static constexpr double memory_order_tolerance = 0.05;
     std::string             state_failure;
+    std::array<double, 2>   J_bounds;
   };
 } // namespace mpm
 

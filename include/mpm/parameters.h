@@ -79,6 +79,13 @@ namespace mpm
    */
   namespace Parse
   {
+    /// "'path/name' = 'text'": an entry as the scene gives it, for
+    /// messages that name a parameter they did not read themselves.
+    std::string
+    given(const ParameterHandler &prm,
+          const std::string      &path,
+          const std::string      &name);
+
     /// A double that must lie in (lower, upper) or [lower, upper].
     double
     bounded_double(const ParameterHandler &prm,

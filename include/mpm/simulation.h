@@ -46,6 +46,10 @@ namespace mpm
     print_scene_summary() const;
     void
     write_output(const double wall_seconds);
+    /// Stop the run if a value for statistics.csv is not finite.
+    void
+    stop_if_not_finite(const Statistics<dim>     &s,
+                       const std::vector<double> &extra) const;
     /// After an output: write a checkpoint if one is due.
     void
     checkpoint_if_due(const double wall_seconds);
@@ -102,8 +106,11 @@ namespace mpm
     std::unique_ptr<EnergyGuard<dim>>            energy_guard;
     std::unique_ptr<BodyExtents<dim>>            extents; ///< if asked for
     std::unique_ptr<Output<dim>>                 output;
-    double                                       last_output_time = -1;
-    double next_checkpoint_time = 0, last_checkpoint_wall = 0;
+    /// The names of the columns of statistics.csv after the statistics'
+    /// own (verification, walls, regions, ..., extents last).
+    std::vector<std::string> statistics_columns;
+    double                   last_output_time     = -1;
+    double                   next_checkpoint_time = 0, last_checkpoint_wall = 0;
     /// The step this run started from (not 0 after a restart): the cost per
     /// particle-step counts this run's steps.
     unsigned int first_step = 0;

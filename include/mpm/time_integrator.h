@@ -480,6 +480,8 @@ namespace mpm
       fluid_force;
     Tensor<1, dim>      fluid_force_total; ///< this step's, on owned nodes
     std::vector<double> wave_modulus_of_body;
+    /// dM/dp of each body (Material::wave_modulus_pressure_slope).
+    std::vector<double> wave_modulus_pressure_slope_of_body;
     /// Impedances rho c_p and rho c_s of the absorbing faces.
     double normal_impedance = 0, shear_impedance = 0;
     /// Each body's pressure and traction on its loaded surface (null:

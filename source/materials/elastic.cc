@@ -63,6 +63,12 @@ namespace mpm
       {
       }
 
+      std::string
+      stiffness_parameters() const override
+      {
+        return c.given;
+      }
+
       static void
       declare_parameters(ParameterHandler &prm)
       {

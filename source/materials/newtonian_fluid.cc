@@ -33,6 +33,7 @@ namespace mpm
         , gamma(Parse::bounded_double(prm, path, "Tait exponent", 1, 20))
         , eta(Parse::bounded_double(prm, path, "viscosity", 0, 1e300))
         , reference_density(density)
+        , given(Parse::given(prm, path, "bulk modulus"))
       {
       }
 
@@ -61,14 +62,25 @@ namespace mpm
       {
       }
 
-      /// The wave speed at rest, sqrt(K / rho0); under compression the
-      /// Tait fluid stiffens (c^2 ~ J^(1-gamma)), by 6 % at J = 0.99 for
-      /// gamma = 7, which the CFL number covers in a weakly compressible
-      /// scene.
+      /// The bulk modulus at rest; under a pressure p the Tait fluid's
+      /// tangent modulus is -J dp/dJ = K J^-gamma = K + gamma p (slope
+      /// below), with the current density: c^2 = (K + gamma p) / rho.
       double
       p_wave_modulus() const override
       {
         return K;
+      }
+
+      double
+      wave_modulus_pressure_slope() const override
+      {
+        return gamma;
+      }
+
+      std::string
+      stiffness_parameters() const override
+      {
+        return given;
       }
 
       double
@@ -81,12 +93,6 @@ namespace mpm
       viscosity() const override
       {
         return eta;
-      }
-
-      bool
-      stiffness_is_kirchhoff() const override
-      {
-        return true;
       }
 
       /// A fluid at rest holds a pressure only: the point's density is set
@@ -154,7 +160,8 @@ namespace mpm
         return -pressure * unit_symmetric_tensor<3>() + 2. * eta * deviator(D);
       }
 
-      const double K, gamma, eta, reference_density;
+      const double      K, gamma, eta, reference_density;
+      const std::string given;
     };
   } // namespace
 

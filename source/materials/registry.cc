@@ -43,6 +43,8 @@ namespace mpm
       Parse::bounded_double(prm, path, "Poisson's ratio", -1., 0.5, true, true);
     lambda = E * nu / ((1. + nu) * (1. - 2. * nu));
     mu     = E / (2. * (1. + nu));
+    given  = Parse::given(prm, path, "Young's modulus") + ", " +
+            Parse::given(prm, path, "Poisson's ratio");
   }
 
 

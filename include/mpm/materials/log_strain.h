@@ -347,6 +347,12 @@ namespace mpm
         return constants.lambda + 2. * constants.mu;
       }
 
+      std::string
+      stiffness_parameters() const override
+      {
+        return constants.given;
+      }
+
       double
       shear_modulus() const override
       {

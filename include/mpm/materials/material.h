@@ -60,6 +60,28 @@ namespace mpm
     virtual double
     p_wave_modulus() const = 0;
 
+    /**
+     * How the p-wave modulus grows with the point's pressure p, dM/dp: the
+     * Tait fluid's tangent bulk modulus is K + gamma p, so a fluid held
+     * under a pressure well above K (a soft fluid under its own weight)
+     * carries waves far faster than sqrt(K / rho), and a time step from K
+     * alone would be unstable. 0 for the models whose stiffness does not
+     * depend on the pressure. The CFL time step uses M + slope max(p, 0).
+     */
+    virtual double
+    wave_modulus_pressure_slope() const
+    {
+      return 0.;
+    }
+
+    /// The parameters that set the model's stiffness, as given, for
+    /// messages (an initial stress the model cannot carry names them).
+    virtual std::string
+    stiffness_parameters() const
+    {
+      return "";
+    }
+
     /// Small-strain shear modulus mu, for the s-wave impedance of
     /// absorbing faces.
     virtual double

@@ -63,6 +63,8 @@ namespace mpm
 
     double lambda;
     double mu;
+    /// E and nu as the scene gives them, with their full names.
+    std::string given;
 
     double
     bulk_modulus() const
