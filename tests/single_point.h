@@ -46,6 +46,9 @@ namespace single_point
       q.assign(layout.n_properties, 0.);
       q[layout.mass]   = density;
       q[layout.volume] = 1;
+      if (layout.deformation_gradient != FieldLayout::absent)
+        for (unsigned int d = 0; d < dim; ++d)
+          q[layout.deformation_gradient + d * dim + d] = 1.;
       material->initialise_point(q.data(), layout, sigma0);
     }
 

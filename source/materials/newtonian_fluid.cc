@@ -29,7 +29,12 @@ namespace mpm
       NewtonianFluid(ParameterHandler  &prm,
                      const std::string &path,
                      const double       density)
-        : K(Parse::bounded_double(prm, path, "bulk modulus", 0, 1e300, true))
+        : K(Parse::bounded_double(prm,
+                                  path,
+                                  "bulk modulus",
+                                  0,
+                                  largest_input,
+                                  true))
         , gamma(Parse::bounded_double(prm, path, "Tait exponent", 1, 20))
         , eta(Parse::bounded_double(prm, path, "viscosity", 0, 1e300))
         , reference_density(density)
@@ -43,7 +48,7 @@ namespace mpm
         prm.declare_entry("bulk modulus",
                           "2e6",
                           Patterns::Anything(),
-                          "K in Pa, > 0: the bulk modulus at rest, "
+                          "K in Pa, in (0, 1e15]: the bulk modulus at rest, "
                           "K = rho0 c^2 for sound speed c.");
         prm.declare_entry("Tait exponent",
                           "7",

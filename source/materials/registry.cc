@@ -37,8 +37,8 @@ namespace mpm
   ElasticConstants::ElasticConstants(ParameterHandler  &prm,
                                      const std::string &path)
   {
-    const double E =
-      Parse::bounded_double(prm, path, "Young's modulus", 0., 1e300, true);
+    const double E = Parse::bounded_double(
+      prm, path, "Young's modulus", 0., largest_input, true);
     const double nu =
       Parse::bounded_double(prm, path, "Poisson's ratio", -1., 0.5, true, true);
     lambda = E * nu / ((1. + nu) * (1. - 2. * nu));
@@ -54,7 +54,8 @@ namespace mpm
     prm.declare_entry("Young's modulus",
                       "1e6",
                       Patterns::Anything(),
-                      "Young's modulus E in Pa, > 0.");
+                      "Young's modulus E in Pa, in (0, 1e15] (diamond: "
+                      "1.2e12; beyond, the energies overflow).");
     prm.declare_entry("Poisson's ratio",
                       "0.3",
                       Patterns::Anything(),
