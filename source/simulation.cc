@@ -313,6 +313,7 @@ namespace mpm
                                            resume.get());
     setup_peak_bytes   = peak_memory_bytes();
     print_scene_summary();
+    refuse_endless_run();
     if (resume == nullptr)
       write_output(wall.wall_time());
     else
@@ -336,7 +337,16 @@ namespace mpm
     const double end_time   = integrator_parameters.end_time;
     double       last_print = 0;
     const double start      = wall.wall_time();
-    Timer        stepping; // time in steps only: the cost per particle-step
+    // Also between the substeps of a macro step, which may take long.
+    const auto report_progress = [&]() {
+      if (wall.wall_time() - last_print >= output_parameters.progress_interval)
+        {
+          last_print = wall.wall_time();
+          print_progress(last_print - start);
+        }
+    };
+    integrator->after_substep = report_progress;
+    Timer stepping; // time in steps only: the cost per particle-step
     stepping.stop();
     try
       {
@@ -359,12 +369,7 @@ namespace mpm
                 write_output(wall.wall_time());
                 checkpoint_if_due(wall.wall_time());
               }
-            if (wall.wall_time() - last_print >=
-                output_parameters.progress_interval)
-              {
-                last_print = wall.wall_time();
-                print_progress(last_print - start);
-              }
+            report_progress();
           }
       }
     catch (const RunError &e)
@@ -377,6 +382,64 @@ namespace mpm
       }
     print_performance(wall.wall_time() - start, stepping.wall_time());
     verification->check(pcout);
+  }
+
+
+  /**
+   * A run that would take more than max_steps steps, or whose output
+   * interval is shorter than its time step for more than max_extra_frames
+   * frames (each step would be cut to the interval and write a frame), is
+   * a mistake in the scene: refused before
+   * the first step, with the estimate and what sets the step. The estimate
+   * is the run's length over its first step; a step that shrinks later is
+   * the run's own business (progress lines show it).
+   */
+  template <int dim>
+  void
+  Simulation<dim>::refuse_endless_run() const
+  {
+    constexpr double max_steps = 1e9;
+    // An interval shorter than the step is fine for a few frames (the
+    // verification problems land steps on output times); beyond this many
+    // it is a typo that fills the disk.
+    constexpr double max_extra_frames = 1e5;
+    const double     remaining =
+      integrator_parameters.end_time - integrator->time();
+    if (!(remaining > 0))
+      return;
+    const auto [dt, limit] = integrator->initial_step();
+    const double interval  = output_parameters.interval;
+    // As a scene would write it (15 digits).
+    const auto as_written = [](const double x) {
+      char text[32];
+      std::snprintf(text, sizeof(text), "%.15g", x);
+      return std::string(text);
+    };
+    if (interval > 0 && interval < dt * (1 - 1e-12) &&
+        remaining / interval > max_extra_frames)
+      {
+        std::ostringstream allowed;
+        allowed << "is shorter than the time step, " << dt << " s (set by "
+                << limit << "): every step would be cut to it and write a "
+                << "frame, " << remaining / interval << " in all (at most "
+                << max_extra_frames
+                << " are allowed below the step); use at least the time "
+                   "step, or 0 for a frame every step";
+        throw InputError("Output/interval",
+                         as_written(interval),
+                         allowed.str());
+      }
+    const double n_steps = remaining / dt;
+    if (!(n_steps <= max_steps))
+      {
+        std::ostringstream allowed;
+        allowed << "would take about " << n_steps << " steps of " << dt
+                << " s (set by " << limit << "), more than " << max_steps
+                << "; shorten the run or change what sets the step";
+        throw InputError("Simulation/end time",
+                         as_written(integrator_parameters.end_time),
+                         allowed.str());
+      }
   }
 
 

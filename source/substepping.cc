@@ -79,6 +79,8 @@ namespace mpm
                 throw RunError(msg.str());
               }
             explicit_step(dt);
+            if (after_substep)
+              after_substep();
             if (last)
               break;
           }
@@ -87,6 +89,8 @@ namespace mpm
             const double n_left =
               std::max(1., std::ceil(remaining / limit * (1 - 1e-12)));
             explicit_step(remaining / n_left);
+            if (after_substep)
+              after_substep();
             if (n_left == 1)
               break;
           }

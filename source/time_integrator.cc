@@ -323,11 +323,17 @@ namespace mpm
         // A rigid body's points keep their volume: no guard.
         density_of_body.push_back(body.rigid_velocity ? 0. : body.density);
         if (!body.rigid_velocity && body.material->viscosity() > 0)
-          viscous_time_step =
-            std::min(viscous_time_step,
-                     prm.mass_scaling * body.density *
-                       Utilities::fixed_power<2>(grid.min_cell_size()) /
-                       (2. * dim * body.material->viscosity()));
+          {
+            const double limit =
+              prm.mass_scaling * body.density *
+              Utilities::fixed_power<2>(grid.min_cell_size()) /
+              (2. * dim * body.material->viscosity());
+            if (limit < viscous_time_step)
+              {
+                viscous_time_step = limit;
+                viscous_body      = &body - points.bodies().data();
+              }
+          }
         body_forces.push_back(body.body_force.get());
         pressures.push_back(body.pressure.get());
         tractions.push_back(body.traction.get());
@@ -642,6 +648,55 @@ namespace mpm
       prm.newmark_gamma > 0.5 ? std::sqrt(0.5 / prm.newmark_gamma) : 1.;
     return prm.cfl_number * newmark_factor *
            std::min(grid.min_cell_size() / max_speed, viscous_time_step);
+  }
+
+
+  template <int dim>
+  std::pair<double, std::string>
+  TimeIntegrator<dim>::initial_step()
+  {
+    std::ostringstream why;
+    if (prm.macro_time_step > 0 && prm.substeps > 0)
+      {
+        why << "'Simulation/macro time step' = " << prm.macro_time_step
+            << " s over 'Simulation/substeps' = " << prm.substeps;
+        return {prm.macro_time_step / prm.substeps, why.str()};
+      }
+    const double limit = stable_time_step();
+    if (prm.fixed_time_step > 0)
+      return {prm.fixed_time_step, "'Simulation/time step'"};
+    if (prm.macro_time_step > 0 && prm.macro_time_step < limit)
+      return {prm.macro_time_step, "'Simulation/macro time step'"};
+    const auto &body = points.bodies();
+    if (prm.cfl_number * viscous_time_step <= limit * (1 + 1e-12))
+      {
+        const unsigned int b = viscous_body;
+        why << "the viscous limit rho h^2 / (2 dim eta) of " << body[b].name
+            << " ('" << body[b].material_name << "', viscosity "
+            << body[b].material->viscosity()
+            << " Pa s, 'density' = " << body[b].density << ")";
+        return {limit, why.str()};
+      }
+    // The CFL condition: name the body whose waves are fastest at rest
+    // (a huge initial speed shows in the speed itself).
+    unsigned int b_fastest = 0;
+    double       fastest   = 0;
+    for (unsigned int b = 0; b < body.size(); ++b)
+      if (wave_modulus_of_body[b] / body[b].density > fastest)
+        fastest = wave_modulus_of_body[b] / body[b].density, b_fastest = b;
+    const auto &b = body[b_fastest];
+    why << "the CFL condition 'Simulation/CFL number' * h / max(c_p + |v_p|) "
+           "with h = "
+        << grid.min_cell_size() << " m; the fastest waves at rest, "
+        << std::sqrt(fastest) << " m/s, are those of " << b.name << " ('"
+        << b.material_name << "'"
+        << (b.material->stiffness_parameters().empty()
+              ? ""
+              : ", " + b.material->stiffness_parameters())
+        << ", 'density' = " << b.density << ")";
+    return {prm.macro_time_step > 0 ? std::min(prm.macro_time_step, limit)
+                                    : limit,
+            why.str()};
   }
 
 

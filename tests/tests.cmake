@@ -717,7 +717,7 @@ mpm_test(bad_glen_exponent PRM ../benchmarks/glaciology/glen_slab.prm EXIT 1
   ERROR "parameter 'Bodies/Body 1/Maxwell viscoelastic/Glen exponent' = '0.5': allowed range is .1, 10.")
 mpm_test(bad_fluid_bulk_modulus PRM ../benchmarks/fluids/hydrostatic_column.prm EXIT 1
   ARGS -s "Bodies/Body 0/Newtonian fluid/bulk modulus=0"
-  ERROR "parameter 'Bodies/Body 0/Newtonian fluid/bulk modulus' = '0': must be > 0")
+  ERROR "parameter 'Bodies/Body 0/Newtonian fluid/bulk modulus' = '0': allowed range is .0, 1e.15.")
 mpm_test(bad_fluid_shear_stress PRM ../benchmarks/fluids/hydrostatic_column.prm EXIT 1
   ARGS -s "Bodies/Body 0/initial stress=-1000"
   ERROR "parameter 'Bodies/Body 0/initial stress'.*carries shear stress, which is not a state at rest of 'Newtonian fluid'")
@@ -917,6 +917,29 @@ mpm_test(bad_macro_with_time_step PRM block_settling.prm EXIT 1
 mpm_test(bad_kinetic_damping_without_macro PRM block_settling.prm EXIT 1
   ARGS -s "Simulation/kinetic damping=true"
   ERROR "parameter 'Simulation/kinetic damping' = 'true': needs 'Simulation/macro time step' > 0 .it acts once per macro step.")
+# Runs that would never end or fill the disk are refused before the first
+# step, with the estimate and what sets the step (issue 32, class 5); a
+# macro step of many substeps prints progress lines within it.
+mpm_test(bad_output_interval_below_step PRM block_settling.prm EXIT 1
+  ARGS -s "Output/interval=1e-30"
+  ERROR "parameter 'Output/interval' = '1e-30': is shorter than the time step, 0.00246.* s .set by the CFL condition.*Young's modulus' = '1e5'.*'density' = 1000..: every step would be cut to it and write a frame, 1.5e.30 in all")
+mpm_test(bad_endless_run_density PRM block_settling.prm EXIT 1
+  ARGS -s "Bodies/Body 0/density=1e-30"
+  ERROR "parameter 'Simulation/end time' = '1.5': would take about 1.9.*e.19 steps of 7.8.*e-20 s .set by the CFL condition.*'density' = 1e-30..*more than 1e.09")
+mpm_test(bad_endless_run_viscosity PRM ../benchmarks/fluids/dam_break.prm EXIT 1
+  ARGS -s "Bodies/Body 0/Newtonian fluid/viscosity=1e9"
+  ERROR "parameter 'Simulation/end time' = '0.36': would take about 1.8.*e.10 steps of 1.95.*e-11 s .set by the viscous limit .* of Bodies/Body 0 .'Newtonian fluid', viscosity 1e.09 Pa s")
+mpm_test(bad_endless_run_macro_step PRM block_settling.prm EXIT 1
+  ARGS -s "Simulation/macro time step=1e-30"
+  ERROR "parameter 'Simulation/end time' = '1.5': would take about 1.5e.30 steps of 1e-30 s .set by 'Simulation/macro time step'.")
+mpm_test(bad_endless_run_substeps PRM block_settling.prm EXIT 1
+  ARGS -s "Simulation/macro time step=1e-3" -s "Simulation/substeps=1000000"
+  ERROR "would take about 1.5e.09 steps of 1e-09 s .set by 'Simulation/macro time step' = 0.001 s over 'Simulation/substeps' = 1000000.")
+mpm_test(progress_within_macro_step PRM block_settling.prm
+  ARGS -s "Verification/exact solution=none"
+       -s "Simulation/macro time step=0.01" -s "Simulation/substeps=5"
+       -s "Simulation/end time=0.01" -s "Output/progress interval=0"
+  OUTPUT "step +2  t = +0.004 ")
 mpm_test(bad_macro_time_step PRM block_settling.prm EXIT 1
   ARGS -s "Simulation/macro time step=-1"
   ERROR "parameter 'Simulation/macro time step' = '-1': must be >= 0")

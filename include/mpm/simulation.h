@@ -50,6 +50,10 @@ namespace mpm
     void
     stop_if_not_finite(const Statistics<dim>     &s,
                        const std::vector<double> &extra) const;
+    /// Refuse a run of more than 1e9 steps, or of more than 1e5 frames
+    /// at an interval below its time step.
+    void
+    refuse_endless_run() const;
     /// After an output: write a checkpoint if one is due.
     void
     checkpoint_if_due(const double wall_seconds);

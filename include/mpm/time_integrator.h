@@ -16,6 +16,7 @@
 #include <mpm/material_points.h>
 
 #include <array>
+#include <functional>
 #include <limits>
 
 namespace mpm
@@ -214,6 +215,16 @@ namespace mpm
     /// h / max(c_p + |v_p|). Also checks that every point is finite.
     double
     stable_time_step();
+
+    /// The length of the explicit steps (substeps) the run starts with and
+    /// what sets it, in words that name the parameter (collective): for
+    /// the estimate of a run's length before it starts.
+    std::pair<double, std::string>
+    initial_step();
+
+    /// Called after every substep of a macro step (the progress line of a
+    /// macro step that takes long).
+    std::function<void()> after_substep;
 
     /// Put the clock and counters into @p state, or take them back from
     /// it (checkpoint and restart).
@@ -494,6 +505,8 @@ namespace mpm
     /// The momentum-diffusion limit of viscous (fluid) bodies on the time
     /// step, min rho0 h^2 / (2 dim eta); infinite without them.
     double viscous_time_step = std::numeric_limits<double>::infinity();
+    /// The body that sets it.
+    unsigned int viscous_body = 0;
     /// uGIMP/cpGIMP: initial domain half-width of each body's points, in
     /// cells: half of 1 / (points per cell).
     std::vector<double>                initial_half_width_of_body;
