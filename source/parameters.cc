@@ -9,6 +9,7 @@
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 namespace mpm
 {
@@ -85,6 +86,18 @@ namespace mpm
     } // namespace
 
 
+    double
+    number(const std::string &text)
+    {
+      const std::string s = Utilities::trim(text);
+      char             *end;
+      const double      value = std::strtod(s.c_str(), &end);
+      if (s.empty() || end != s.c_str() + s.size())
+        throw std::invalid_argument("'" + text + "' is not a number");
+      return value;
+    }
+
+
     std::string
     given(const ParameterHandler &prm,
           const std::string      &path,
@@ -107,7 +120,7 @@ namespace mpm
       double            value;
       try
         {
-          value = Utilities::string_to_double(text);
+          value = number(text);
         }
       catch (...)
         {
@@ -142,7 +155,7 @@ namespace mpm
       try
         {
           for (const auto &e : entries)
-            values.push_back(Utilities::string_to_double(e));
+            values.push_back(number(e));
         }
       catch (...)
         {
@@ -255,7 +268,7 @@ namespace mpm
         {
           try
             {
-              if (Utilities::string_to_double(e) != 0.)
+              if (number(e) != 0.)
                 return false;
             }
           catch (...)
@@ -284,8 +297,8 @@ namespace mpm
             {
               if (eq == std::string::npos || name.empty())
                 throw 0;
-              const double value = Utilities::string_to_double(
-                Utilities::trim(entry.substr(eq + 1)));
+              const double value =
+                number(Utilities::trim(entry.substr(eq + 1)));
               if (!std::isfinite(value))
                 throw 0;
               if (taken.count(name) > 0 || c.count(name) > 0)

@@ -604,9 +604,11 @@ namespace mpm
           continue;
         const double lambda = material.p_wave_modulus() - 2. * mu;
         const double nu     = lambda / (2. * (lambda + mu));
+        // The value as the scene gives it (0.4999999 would print as 0.5).
         if (nu > 0.45)
-          pcout << "  warning: body " << b << " has Poisson's ratio " << nu
-                << " (> 0.45): nearly incompressible bodies lock (too stiff, "
+          pcout << "  warning: body " << b << " has Poisson's ratio > 0.45 ("
+                << material.stiffness_parameters()
+                << "): nearly incompressible bodies lock (too stiff, "
                    "noisy pressure) on every basis; set 'Simulation/F-bar = "
                    "true'"
                 << std::endl;

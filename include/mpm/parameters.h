@@ -79,6 +79,14 @@ namespace mpm
    */
   namespace Parse
   {
+    /// The number @p text spells (surrounding blanks allowed); throws
+    /// std::invalid_argument if it is not one. Unlike deal.II's
+    /// string_to_double, a number beyond the doubles is +-inf and one
+    /// below them is its subnormal or 0 (the caller's range check then
+    /// names it with its allowed range), not "not a number".
+    double
+    number(const std::string &text);
+
     /// "'path/name' = 'text'": an entry as the scene gives it, for
     /// messages that name a parameter they did not read themselves.
     std::string

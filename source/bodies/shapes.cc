@@ -197,8 +197,8 @@ namespace mpm
                         "per vertex, vertices separated by ';')");
             try
               {
-                vertices.emplace_back(Utilities::string_to_double(xy[0]),
-                                      Utilities::string_to_double(xy[1]));
+                vertices.emplace_back(Parse::number(xy[0]),
+                                      Parse::number(xy[1]));
               }
             catch (...)
               {

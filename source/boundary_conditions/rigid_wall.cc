@@ -73,7 +73,7 @@ namespace mpm
       for (unsigned int d = 0; d < dim; ++d)
         try
           {
-            normal[d] = Utilities::string_to_double(values[d]);
+            normal[d] = Parse::number(values[d]);
           }
         catch (...)
           {
@@ -81,10 +81,19 @@ namespace mpm
                              prm.get("normal"),
                              "must be numbers");
           }
-      if (!(normal.norm() > 0) || !std::isfinite(normal.norm()))
+      // Only the direction counts: scaled by its largest component first,
+      // a normal of tiny (or huge) components keeps it.
+      double largest = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        largest = std::max(largest, std::abs(normal[d]));
+      if (!(largest > 0) || !std::isfinite(largest))
         throw InputError(path + "/normal",
                          prm.get("normal"),
                          "must be a non-zero, finite vector");
+      // (Component by component: Tensor's /= multiplies by 1 / largest,
+      // which overflows for a subnormal largest.)
+      for (unsigned int d = 0; d < dim; ++d)
+        normal[d] = normal[d] / largest;
       normal /= normal.norm();
       velocity = Parse::vector<dim>(prm, path, "velocity");
       friction_coefficient =

@@ -49,8 +49,10 @@ namespace mpm
     enabled = prm.get_bool("enabled");
     if (enabled)
       {
-        lower_corner = Parse::point<dim>(prm, path, "lower corner");
-        upper_corner = Parse::point<dim>(prm, path, "upper corner");
+        lower_corner      = Parse::point<dim>(prm, path, "lower corner");
+        upper_corner      = Parse::point<dim>(prm, path, "upper corner");
+        lower_corner_text = prm.get("lower corner");
+        upper_corner_text = prm.get("upper corner");
         for (unsigned int d = 0; d < dim; ++d)
           if (!(upper_corner[d] >= lower_corner[d]))
             throw InputError(path + "/upper corner",
@@ -73,7 +75,7 @@ namespace mpm
             if (constrained[d])
               try
                 {
-                  velocity[d] = Utilities::string_to_double(entries[d]);
+                  velocity[d] = Parse::number(entries[d]);
                 }
               catch (...)
                 {
@@ -104,8 +106,10 @@ namespace mpm
         Utilities::MPI::sum(nodes.size(),
                             grid.triangulation().get_communicator()) == 0)
       throw InputError("Boundary conditions/Velocity region/upper corner",
-                       "",
-                       "the box holds no grid node; make it reach a node");
+                       prm.upper_corner_text,
+                       "with 'lower corner' = '" + prm.lower_corner_text +
+                         "' the box holds no grid node; make it reach a "
+                         "node");
   }
 
 

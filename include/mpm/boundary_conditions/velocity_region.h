@@ -26,8 +26,10 @@ namespace mpm
     void
     parse_parameters(ParameterHandler &prm);
 
-    bool                  enabled = false;
-    Point<dim>            lower_corner, upper_corner;
+    bool       enabled = false;
+    Point<dim> lower_corner, upper_corner;
+    /// The corners as the scene gives them, for messages.
+    std::string           lower_corner_text, upper_corner_text;
     Tensor<1, dim>        velocity;
     std::array<bool, dim> constrained; ///< per component; else free
   };
