@@ -639,9 +639,13 @@ namespace mpm
     double wall_speed = 0;
     for (const RigidWall<dim> *wall : rigid_walls)
       wall_speed = std::max(wall_speed, wall->speed());
-    const double max_speed = std::sqrt(Utilities::MPI::max(max_c2, comm)) +
-                             std::sqrt(Utilities::MPI::max(max_v2, comm)) +
-                             wall_speed;
+    // A velocity region drives the material it holds at its speed: from
+    // the first step on, before the points have it.
+    const double max_speed =
+      std::sqrt(Utilities::MPI::max(max_c2, comm)) +
+      std::max(std::sqrt(Utilities::MPI::max(max_v2, comm)),
+               velocity_region.speed()) +
+      wall_speed;
     // Newmark's gamma > 1/2 shrinks the stable range of omega dt from 2 to
     // sqrt(2 / gamma) (benchmarks/verification/newmark_amplification.py).
     const double newmark_factor =

@@ -424,6 +424,13 @@ mpm_test(rigid_wall_fast PRM two_disks.prm
        -s "Simulation/end time=0.01" -s "Output/interval=0.005"
        -s "Verification/energy drift bound=1e9"
        -s "Verification/momentum drift bound=1e9")
+#    A velocity region counts in the time step from the first step, before
+#    the points it drives have its speed (reviewed history of the first
+#    steps: dt = CFL h / (c + 100 m/s) = 0.04 / (116.0 + 100) = 1.85e-4 s
+#    against 3.45e-4 s before).
+mpm_test(velocity_region_fast PRM ../benchmarks/plasticity/strip_footing.prm
+  ARGS -s "Boundary conditions/Velocity region/velocity=0, -100"
+       -s "Simulation/end time=1e-3" -s "Output/interval=0")
 #    A frictional body with FLIP's PIC share is told at the start that the
 #    share shortens granular runouts (benchmarks/granular/README.md).
 mpm_test(column_collapse_flip_warns PRM ../benchmarks/granular/column_collapse.prm

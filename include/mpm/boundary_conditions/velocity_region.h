@@ -61,6 +61,14 @@ namespace mpm
       return prm.enabled;
     }
 
+    /// The speed it drives its nodes at (its constrained components; 0
+    /// when disabled), for the time step.
+    double
+    speed() const
+    {
+      return prm.enabled ? prm.velocity.norm() : 0.;
+    }
+
     /**
      * Set the velocity of the region's nodes in the interleaved nodal
      * array @p u (stride @p stride, mass at offset 0, velocity at
