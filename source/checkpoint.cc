@@ -77,6 +77,8 @@ namespace mpm
           std::make_pair("grid", &grid_files)})
       for (const auto &[time, name] : *records)
         out << "frame " << list << ' ' << time << ' ' << name << '\n';
+    for (const auto &[path, value] : scene)
+      out << "entry " << path << " = " << value << '\n';
     if (!out)
       throw RunError("cannot write the checkpoint file " + file);
   }
@@ -90,6 +92,14 @@ namespace mpm
     std::string   line;
     while (std::getline(in, line))
       {
+        // "entry <path> = <value>": path and value may hold blanks.
+        if (line.rfind("entry ", 0) == 0)
+          {
+            const auto equals = line.find(" = ");
+            if (equals != std::string::npos)
+              s.scene[line.substr(6, equals - 6)] = line.substr(equals + 3);
+            continue;
+          }
         std::istringstream words(line);
         std::string        kind, key, number;
         words >> kind >> key >> number;

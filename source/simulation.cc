@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
 namespace mpm
@@ -85,6 +86,45 @@ namespace mpm
 
 
 
+  namespace
+  {
+    /// Every entry of @p prm by its path, as given (from deal.II's short
+    /// PRM listing: "subsection", "set name = value", "end").
+    std::map<std::string, std::string>
+    entries_of(const ParameterHandler &prm)
+    {
+      std::ostringstream listing;
+      prm.print_parameters(listing, ParameterHandler::ShortPRM);
+      std::istringstream                 lines(listing.str());
+      std::vector<std::string>           path;
+      std::map<std::string, std::string> entries;
+      std::string                        line;
+      const auto                         joined = [&](const std::string &name) {
+        std::string p;
+        for (const auto &s : path)
+          p += s + "/";
+        return p + name;
+      };
+      while (std::getline(lines, line))
+        {
+          line = Utilities::trim(line);
+          if (line.rfind("subsection ", 0) == 0)
+            path.push_back(Utilities::trim(line.substr(11)));
+          else if (line == "end" && !path.empty())
+            path.pop_back();
+          else if (line.rfind("set ", 0) == 0)
+            {
+              const auto equals = line.find(" = ");
+              if (equals != std::string::npos)
+                entries[joined(Utilities::trim(line.substr(4, equals - 4)))] =
+                  Utilities::trim(line.substr(equals + 3));
+            }
+        }
+      return entries;
+    }
+  } // namespace
+
+
   template <int dim>
   Simulation<dim>::Simulation(ParameterHandler  &prm,
                               MPI_Comm           comm,
@@ -92,6 +132,7 @@ namespace mpm
     : comm(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
     , restart(restart)
+    , scene_entries(entries_of(prm))
   {
     grid_parameters.parse_parameters(prm);
     integrator_parameters.parse_parameters(prm);
@@ -149,6 +190,17 @@ namespace mpm
     // A checkpoint is only read by the scene that wrote it (checked before
     // deal.II loads a grid that does not match, which it cannot report).
     auto throw_scene_differs = [&]() {
+      // With the physics the same (check_restart), only the output fields
+      // change what the points store.
+      const auto fields = resume->scene.find("Output/fields");
+      if (fields != resume->scene.end() &&
+          fields->second != scene_entries.at("Output/fields"))
+        throw InputError("Output/fields",
+                         scene_entries.at("Output/fields"),
+                         "needs other point data than the checkpoint "
+                         "stores; restart with its 'Output/fields' = '" +
+                           fields->second +
+                           "' (the other output settings may change)");
       throw InputError("--restart",
                        restart,
                        "was written by a scene with another grid or other "
@@ -156,6 +208,8 @@ namespace mpm
                        "(end time, output and checkpoint settings may "
                        "change)");
     };
+    if (resume != nullptr)
+      check_restart(*resume, checkpoint);
     if (resume != nullptr)
       {
         double n_cells = 1;
@@ -445,6 +499,74 @@ namespace mpm
 
   template <int dim>
   void
+  Simulation<dim>::check_restart(const RunState    &resume,
+                                 const std::string &checkpoint) const
+  {
+    const double t = resume.get("time");
+    if (!(integrator_parameters.end_time > t))
+      {
+        std::ostringstream allowed;
+        allowed << "is not after the time of the checkpoint '" << checkpoint
+                << "', t = " << t
+                << "; a restart continues to a later end time";
+        throw InputError("Simulation/end time",
+                         scene_entries.at("Simulation/end time"),
+                         allowed.str());
+      }
+    // What a restart may change: when to stop, what to write, where to
+    // save (and how unbalanced the ranks may be, as their number may
+    // change). Everything else is the physics the checkpoint continues.
+    const auto may_change = [](const std::string &path) {
+      for (const std::string prefix : {"Simulation/end time",
+                                       "Output/",
+                                       "Checkpoint/",
+                                       "Grid/load imbalance limit"})
+        if (path.rfind(prefix, 0) == 0)
+          return true;
+      return false;
+    };
+    // A checkpoint of an older version holds no entries: nothing to
+    // compare.
+    if (resume.scene.empty())
+      return;
+    std::vector<std::string> differences;
+    const auto value_in = [](const auto &entries, const std::string &path) {
+      const auto it = entries.find(path);
+      return it == entries.end() ? std::string("(none)")
+                                 : "'" + it->second + "'";
+    };
+    std::set<std::string> paths;
+    for (const auto &e : resume.scene)
+      paths.insert(e.first);
+    for (const auto &e : scene_entries)
+      paths.insert(e.first);
+    for (const auto &path : paths)
+      if (!may_change(path) &&
+          value_in(resume.scene, path) != value_in(scene_entries, path))
+        differences.push_back("'" + path + "' (" +
+                              value_in(resume.scene, path) + " there, " +
+                              value_in(scene_entries, path) + " here)");
+    if (!differences.empty())
+      {
+        std::string listed = differences[0];
+        for (unsigned int i = 1;
+             i < std::min<std::size_t>(differences.size(), 4);
+             ++i)
+          listed += ", " + differences[i];
+        if (differences.size() > 4)
+          listed += " and " + std::to_string(differences.size() - 4) + " more";
+        throw InputError("--restart",
+                         restart,
+                         "was written by a scene that differs in " + listed +
+                           "; a restart continues the same physics (only "
+                           "'Simulation/end time', 'Output/...' and "
+                           "'Checkpoint/...' may change)");
+      }
+  }
+
+
+  template <int dim>
+  void
   Simulation<dim>::checkpoint_if_due(const double wall_seconds)
   {
     const auto  &c   = checkpoint_parameters;
@@ -475,6 +597,7 @@ namespace mpm
     state.values["point_properties"]     = points->layout().n_properties;
     state.values["grid_cells"]           = grid->n_cells();
     state.values["rebalances"]           = n_rebalances;
+    state.scene                          = scene_entries;
     Checkpoint::save(c.directory, *grid, *points, state, comm);
     last_checkpoint_wall = wall_seconds;
   }

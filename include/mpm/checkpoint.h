@@ -49,6 +49,9 @@ namespace mpm
   {
     std::map<std::string, double>               values;
     std::vector<std::pair<double, std::string>> particle_files, grid_files;
+    /// Every entry of the scene that wrote the checkpoint, by its path
+    /// ("Bodies/Body 0/density"), as given: a restart names what differs.
+    std::map<std::string, std::string> scene;
 
     double
     get(const std::string &key) const;

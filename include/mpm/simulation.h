@@ -54,6 +54,12 @@ namespace mpm
     /// at an interval below its time step.
     void
     refuse_endless_run() const;
+    /// A restart continues the checkpoint's physics: refuse a scene that
+    /// differs in anything but the end time, output and checkpoint
+    /// settings, an end time already passed, and output fields whose point
+    /// data the checkpoint lacks.
+    void
+    check_restart(const RunState &resume, const std::string &checkpoint) const;
     /// After an output: write a checkpoint if one is due.
     void
     checkpoint_if_due(const double wall_seconds);
@@ -95,8 +101,11 @@ namespace mpm
     OutputParameters                      output_parameters;
     CheckpointParameters                  checkpoint_parameters;
     std::string                           restart;
-    bool                                  bodies_may_overlap;
-    VerificationParameters                verification_parameters;
+    /// Every entry of the scene by its path, as given (written with each
+    /// checkpoint; a restart compares).
+    std::map<std::string, std::string> scene_entries;
+    bool                               bodies_may_overlap;
+    VerificationParameters             verification_parameters;
 
     std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
     std::unique_ptr<BackgroundGrid<dim>> grid;
