@@ -701,7 +701,11 @@ namespace mpm
                   if (!may_overlap && overlap.empty())
                     overlap = overlap_at(b, x);
                   const double mass = body.density * volume;
-                  minimum_mass      = std::min(minimum_mass, mass);
+                  // The small-mass guard is about the deformable bodies: a
+                  // rigid body's density must not move it (a light rigid
+                  // floor changed the rolling disk on it).
+                  if (!body.rigid_velocity)
+                    minimum_mass = std::min(minimum_mass, mass);
                   std::fill(p.begin(), p.end(), 0.);
                   p[l.mass]   = mass;
                   p[l.volume] = volume;

@@ -781,13 +781,21 @@ namespace mpm
                 {
                   const double half_side =
                     0.5 * (1 + 1e-9) * std::pow(q[l.volume], 1. / dim);
+                  // A rigid body's normal is the gradient of its volume,
+                  // not of its mass: its density must not change how it
+                  // acts (with 1e-300 the products underflowed and the
+                  // floor stopped acting).
+                  const double weight =
+                    density_of_body[static_cast<unsigned int>(q[l.body])] > 0
+                      ? m
+                      : q[l.volume];
                   for (unsigned int v = 0; v < Basis::n_nodes; ++v)
                     {
                       double *data = contact_data.begin() +
                                      MultiFieldContact<dim>::data_per_field *
                                        slot_of(s.nodes[v], field);
                       for (unsigned int d = 0; d < dim; ++d)
-                        data[d] += m * s.gradients[v][d];
+                        data[d] += weight * s.gradients[v][d];
                       const Tensor<1, dim> r      = s.node_offset(v);
                       bool                 inside = true;
                       for (unsigned int d = 0; d < dim; ++d)

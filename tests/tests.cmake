@@ -635,6 +635,15 @@ endif()
 add_test(NAME rolling_disk
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/contact/rolling_disk.py
     --exe $<TARGET_FILE:dealii-mpm> --check ${rolling_cases})
+#     A prescribed body's density does not change what it does (issue 32,
+#     class 8): the disk slides on floors of density 1000, 1 and 1e-300 with
+#     the same acceleration to 1e-9 (before: 4.056, 4.060 and 4.905 m/s^2,
+#     the light floor moving the small-mass guard's threshold and the
+#     lightest one no longer acting).
+add_test(NAME rolling_disk_floor_density
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/contact/rolling_disk.py
+    --exe $<TARGET_FILE:dealii-mpm> --check --mu 0.1 --cells 5 --max-error 0.01
+    -s "Simulation/end time=0.2" --floor-density 1000,1,1e-300)
 mpm_test(bad_contact_bodies PRM two_disks.prm EXIT 1
   ARGS -s "Contact/bodies=0, 2"
   ERROR "parameter 'Contact/bodies' = '0, 2': must be comma-separated body indices in .0, 2.")
