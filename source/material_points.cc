@@ -246,7 +246,8 @@ namespace mpm
     else
       parse_shape(prm);
     parse_surface_loads(prm);
-    density = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
+    density      = Parse::bounded_double(prm, name, "density", 0, 1e300, true);
+    density_text = prm.get("density");
     initial_velocity =
       Parse::expression_list(prm, "initial velocity", dim, name);
     initial_displacement =
@@ -706,6 +707,22 @@ namespace mpm
                   // floor changed the rolling disk on it).
                   if (!body.rigid_velocity)
                     minimum_mass = std::min(minimum_mass, mass);
+                  // A deformable point's mass is divided by and squared:
+                  // one near the smallest doubles makes its density
+                  // infinite at the first step (a prescribed body's is
+                  // never used so).
+                  if (!body.rigid_velocity && !(mass >= 1e-150) &&
+                      overlap.empty())
+                    {
+                      std::ostringstream why;
+                      why << "gives a point at (" << x << ") a mass of " << mass
+                          << " kg, below 1e-150: its density and energy "
+                             "would overflow";
+                      overlap = InputError(body.name + "/density",
+                                           body.density_text,
+                                           why.str())
+                                  .what();
+                    }
                   std::fill(p.begin(), p.end(), 0.);
                   p[l.mass]   = mass;
                   p[l.volume] = volume;

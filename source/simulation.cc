@@ -675,8 +675,9 @@ namespace mpm
           std::ostringstream msg;
           msg << "t = " << integrator->time() << ": the statistics column '"
               << name << "' is " << value
-              << "; the run is unstable (try a smaller CFL number, MUSL, or "
-                 "damping)";
+              << ": a value overflowed (an input of extreme magnitude, e.g. "
+                 "an exact solution for 'Verification', or an unstable run: "
+                 "try a smaller CFL number, MUSL, or damping)";
           failure = msg.str();
           break;
         }

@@ -12,6 +12,9 @@ and never in a crash (a signal, another exit code) or a hang (--timeout).
   fuzz_parameters.py --exe build/dealii-mpm             every case
   fuzz_parameters.py --exe ... --jobs 2                 in 2 processes
   fuzz_parameters.py --exe ... --sample 60 --seed 1     a random sample
+  fuzz_parameters.py --exe ... --np 2 --sample 20       each case on 2
+      MPI ranks (collective failures must stop every rank: a rank left
+      waiting is a hang)
   fuzz_parameters.py --exe ... --report                 also list the
       input errors that name another parameter than the bad one, and the
       stopped runs, for review (they are not failures)
@@ -21,8 +24,10 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(HERE)
+# Beyond the malformed: values a scene may hold by mistake or at the edge
+# of what makes sense (1e-30, 1e12, 1 in the wrong unit; issue 32).
 BAD_VALUES = ["", "-1", "0", "1e308", "-1e308", "nan", "inf", "abc",
-              "1, 2, 3, 4", "1e-308"]
+              "1, 2, 3, 4", "1e-308", "1e-30", "1e12", "1"]
 
 
 def parameters(scene):
@@ -40,13 +45,19 @@ def parameters(scene):
     return found
 
 
-def verdict(returncode, stderr):
+def verdict(returncode, stderr, np=1):
     """None if acceptable, else what went wrong."""
     message = stderr.strip()
     if returncode == 0 or returncode == 2:
         return None
     if returncode == 1:
         lines = [l for l in message.splitlines() if l.strip()]
+        # mpirun adds its own report of the non-zero exit after ours; a
+        # stack trace must still not be there.
+        if np > 1:
+            if re.search("Stacktrace|An error occurred in line", message):
+                return "input error with a stack trace"
+            lines = [l for l in lines if l.startswith("dealii-mpm")]
         if len(lines) != 1:
             return "input error of %d lines" % len(lines)
         if not re.search(r"parameters? '|section '|scene|option", lines[0]):
@@ -79,6 +90,8 @@ def main():
     parser.add_argument("--report", action="store_true")
     parser.add_argument("--jobs", type=int, default=1,
                         help="cases run at once")
+    parser.add_argument("--np", type=int, default=1,
+                        help="MPI ranks per case")
     a = parser.parse_args()
     # The scenes that are malformed on purpose (their own tests) are left
     # out.
@@ -103,6 +116,8 @@ def main():
                        "-s", "Output/progress interval=1e9",
                        "-s", "Simulation/end time=1e-4",
                        "-s", "%s=%s" % (path, value)]
+            if a.np > 1:
+                command = ["mpirun", "-np", str(a.np)] + command
             try:
                 r = subprocess.run(command, stdout=subprocess.DEVNULL,
                                    stderr=subprocess.PIPE, text=True,
@@ -118,7 +133,7 @@ def main():
             if code is None:
                 problem = "no answer within %g s (a hang?)" % a.timeout
             else:
-                problem = verdict(code, stderr)
+                problem = verdict(code, stderr, a.np)
                 counts[code] = counts.get(code, 0) + 1
             if a.report and not problem:
                 report(path, value, code, stderr.strip(),

@@ -59,8 +59,9 @@ namespace mpm
                      const unsigned int         index,
                      const GridParameters<dim> &grid);
 
-    std::string name;       ///< "Bodies/Body 0", for messages
-    std::string shape_name; ///< the scene's 'shape'
+    std::string name;         ///< "Bodies/Body 0", for messages
+    std::string density_text; ///< 'density' as the scene gives it
+    std::string shape_name;   ///< the scene's 'shape'
     /// The closed-form shape; null for a body read from a mesh file.
     std::shared_ptr<const Shape<dim>> shape;
     /// A mesh body's points, sorted by grid cell; null for a shape.
