@@ -169,16 +169,8 @@ main()
                                   "Drucker-Prager",
                                   "Mohr-Coulomb",
                                   "Maxwell viscoelastic"})
-    ends(model, elastic, "Young's modulus", {"1e7"});
-  for (const std::string model : {"linear elastic",
-                                  "neo-Hookean",
-                                  "Hencky elastic",
-                                  "von Mises",
-                                  "Drucker-Prager",
-                                  "Mohr-Coulomb",
-                                  "Maxwell viscoelastic"})
     {
-      ends(model, elastic, "Young's modulus", {"1e-300", "1e15"});
+      ends(model, elastic, "Young's modulus", {"1e7", "1e-300", "1e15"});
       ends(model, elastic, "Poisson's ratio", {"-0.9999999", "0.4999999"});
     }
 
