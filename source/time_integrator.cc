@@ -484,6 +484,14 @@ namespace mpm
     with_scene_basis([&](const auto &basis) { advance(basis, dt); });
     raise_if_any_failed(failure, comm);
     close_external_work(dt);
+    // After the step's loads did their work at the velocities they saw.
+    for (auto *wall : rigid_walls)
+      {
+        const double w =
+          wall->keep_points_in_front(points.handler(), points.layout(), t + dt);
+        work += w;
+        absolute_work += std::abs(w);
+      }
 
     {
       TimerOutput::Scope scope(timer, "relocate");

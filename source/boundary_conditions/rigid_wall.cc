@@ -187,6 +187,40 @@ namespace mpm
 
 
   template <int dim>
+  double
+  RigidWall<dim>::keep_points_in_front(Particles::ParticleHandler<dim> &points,
+                                       const FieldLayout               &l,
+                                       const double                     t)
+  {
+    const Tensor<1, dim> &n                 = prm.normal;
+    const Point<dim>      position          = prm.point + t * prm.velocity;
+    const double          wall_normal_speed = prm.velocity * n;
+    Tensor<1, dim>        reaction;
+    double                work = 0;
+    for (auto &p : points)
+      {
+        double      *q       = p.get_properties().data();
+        const double overlap = -((p.get_location() - position) * n);
+        const double depth   = 0.25 * std::pow(q[l.volume], 1. / dim);
+        if (!(overlap > depth))
+          continue;
+        p.set_location(p.get_location() + (overlap - depth) * n);
+        const Tensor<1, dim> v   = Fields::vector<dim>(q + l.velocity);
+        const double         lag = wall_normal_speed - v * n;
+        if (lag > 0)
+          {
+            const Tensor<1, dim> v_new = v + lag * n;
+            Fields::store(v_new, q + l.velocity);
+            reaction -= q[l.mass] * lag * n;
+            work += 0.5 * q[l.mass] * (v_new.norm_square() - v.norm_square());
+          }
+      }
+    meter.add(reaction);
+    return work;
+  }
+
+
+  template <int dim>
   std::vector<std::string>
   RigidWall<dim>::columns() const
   {
