@@ -4,6 +4,7 @@
 
 #include <mpm/parameters.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -331,12 +332,19 @@ namespace mpm
                     const std::string                   &parameter,
                     const double                         difference_step)
     {
-      auto        f = std::make_unique<FunctionParser<dim>>(expressions.size(),
+      auto f = std::make_unique<FunctionParser<dim>>(expressions.size(),
                                                      0.,
                                                      difference_step);
+      // As given: one expression stands for every component.
       std::string text;
       for (const auto &e : expressions)
         text += (text.empty() ? "" : "; ") + e;
+      if (std::all_of(expressions.begin(),
+                      expressions.end(),
+                      [&](const std::string &e) {
+                        return e == expressions[0];
+                      }))
+        text = expressions.empty() ? "" : expressions[0];
       // muparser reads 'a, b' as two results and keeps the last: a vector
       // written with commas would silently become one component.
       for (const auto &e : expressions)

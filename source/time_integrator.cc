@@ -647,12 +647,21 @@ namespace mpm
     double wall_speed = 0;
     for (const RigidWall<dim> *wall : rigid_walls)
       wall_speed = std::max(wall_speed, wall->speed());
-    // A velocity region drives the material it holds at its speed: from
-    // the first step on, before the points have it.
+    // A velocity region drives the material it holds at its speed, and a
+    // rigid body moves at its prescribed one: from the first step on,
+    // before the points have them (a rigid body's points start at its
+    // 'initial velocity').
+    double prescribed_speed = velocity_region.speed();
+    if (contact)
+      {
+        contact->set_time(t);
+        for (unsigned int r = 0; r < contact->rigid_bodies().size(); ++r)
+          prescribed_speed =
+            std::max(prescribed_speed, contact->rigid_velocity_of(r).norm());
+      }
     const double max_speed =
       std::sqrt(Utilities::MPI::max(max_c2, comm)) +
-      std::max(std::sqrt(Utilities::MPI::max(max_v2, comm)),
-               velocity_region.speed()) +
+      std::max(std::sqrt(Utilities::MPI::max(max_v2, comm)), prescribed_speed) +
       wall_speed;
     // Newmark's gamma > 1/2 shrinks the stable range of omega dt from 2 to
     // sqrt(2 / gamma) (benchmarks/verification/newmark_amplification.py).

@@ -438,6 +438,19 @@ foreach(speed 10 100)
          -s "Verification/energy drift bound=1e9"
          -s "Verification/momentum drift bound=1e9")
 endforeach()
+#    So does a rigid body's prescribed speed, before its points have it
+#    (they start at 'initial velocity'): the second disk made rigid and
+#    driven at (-10, -10) m/s (one value for both) takes a first step of 0.5 h / (c + 14.14 m/s)
+#    = 1.63e-3 s (reviewed; before, 3e-3 s, cut only by the end time).
+mpm_test(rigid_body_fast PRM two_disks.prm
+  ARGS -s "Bodies/Body 1/rigid velocity=-10"
+       -s "Simulation/end time=0.003" -s "Output/interval=0"
+       -s "Verification/energy drift bound=1e9"
+       -s "Verification/momentum drift bound=1e9")
+#    A message shows a vector as given, not expanded to its components.
+mpm_test(bad_rigid_velocity_commas PRM two_disks.prm EXIT 1
+  ARGS -s "Bodies/Body 1/rigid velocity=-10, -10"
+  ERROR "parameter 'Bodies/Body 1/rigid velocity' = '-10, -10': has a ',' outside parentheses")
 #    A velocity region counts in the time step from the first step, before
 #    the points it drives have its speed (reviewed history of the first
 #    steps: dt = CFL h / (c + 100 m/s) = 0.04 / (116.0 + 100) = 1.85e-4 s
