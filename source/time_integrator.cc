@@ -594,11 +594,12 @@ namespace mpm
         const double                  inverse_density = q[l.volume] / q[l.mass];
         // A stiffness that grows with the pressure (the Tait fluid) counts
         // the point's pressure; under tension the modulus at rest bounds
-        // it from above.
-        const double pressure = -trace(s) / dim;
-        const double modulus =
-          wave_modulus_of_body[b] +
-          wave_modulus_pressure_slope_of_body[b] * std::max(pressure, 0.);
+        // it from above. Only such bodies pay for it (a branch the same
+        // for a body's points).
+        double modulus = wave_modulus_of_body[b];
+        if (wave_modulus_pressure_slope_of_body[b] > 0)
+          modulus += wave_modulus_pressure_slope_of_body[b] *
+                     std::max(-trace(s) / dim, 0.);
         // With mass scaling the waves see s rho.
         const double c2 = modulus *
                           (fixed_inverse_density_of_body[b] > 0

@@ -201,7 +201,10 @@ namespace mpm
       {
         double      *q       = p.get_properties().data();
         const double overlap = -((p.get_location() - position) * n);
-        const double depth   = 0.25 * std::pow(q[l.volume], 1. / dim);
+        // Most points are in front: no root for them.
+        if (!(overlap > 0))
+          continue;
+        const double depth = 0.25 * std::pow(q[l.volume], 1. / dim);
         if (!(overlap > depth))
           continue;
         p.set_location(p.get_location() + (overlap - depth) * n);
