@@ -145,6 +145,49 @@ namespace mpm
   }
 
 
+  template <int dim>
+  bool
+  GridParameters<dim>::put_back_behind_closed_face(
+    Point<dim>     &x,
+    Tensor<1, dim> &velocity) const
+  {
+    const auto closed = [this](const unsigned int face) {
+      return boundary[face] == BoundaryType::fixed ||
+             boundary[face] == BoundaryType::slip ||
+             boundary[face] == BoundaryType::friction;
+    };
+    const Tensor<1, dim> h = cell_size();
+    Point<dim>           y = x;
+    Tensor<1, dim>       v = velocity;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double behind_lower = lower_corner[d] - y[d];
+        const double behind_upper = y[d] - upper_corner[d];
+        // The lattice counts the upper face as outside: a point put back
+        // there lands a hair inside.
+        if (behind_lower > 0)
+          {
+            if (!closed(2 * d) || !(behind_lower < 0.25 * h[d]))
+              return false;
+            y[d] = lower_corner[d];
+            v[d] = std::max(v[d], 0.);
+          }
+        else if (behind_upper >= 0)
+          {
+            if (!closed(2 * d + 1) || !(behind_upper < 0.25 * h[d]))
+              return false;
+            y[d] = upper_corner[d] - 1e-9 * h[d];
+            v[d] = std::min(v[d], 0.);
+          }
+        else if (!(behind_lower <= 0 && behind_upper < 0))
+          return false; // NaN
+      }
+    x        = y;
+    velocity = v;
+    return true;
+  }
+
+
   /**
    * The number of coarse cells of the grid with tiles of @p T cells: the
    * tiles are the cells of a coarse mesh refined globally as often as
@@ -601,7 +644,8 @@ namespace mpm
               // The owned tiles whose nodes, widened by one, hold it: the
               // tiles around tile t in each direction.
               bool near = false;
-              for (unsigned int e = 0; e < Utilities::pow(3u, dim) && !near; ++e)
+              for (unsigned int e = 0; e < Utilities::pow(3u, dim) && !near;
+                   ++e)
                 {
                   CellCoordinates other;
                   bool            in   = true;

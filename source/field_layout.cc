@@ -28,6 +28,8 @@ namespace mpm
         add("elastic left Cauchy-Green", Fields::n_embedded<dim>);
     if (requests.plastic_strain)
       l.plastic_strain = add("plastic strain", 1);
+    if (requests.opening)
+      l.opening = add("opening", 1);
     if (requests.damage)
       {
         l.damage         = add("damage", 1);

@@ -997,7 +997,8 @@ namespace mpm
           {
             typename BackgroundGrid<dim>::CellCoordinates cell;
             Point<dim>                                    xi;
-            if (!grid.locate(p->get_location(), cell, xi))
+            if (!grid.locate(p->get_location(), cell, xi) &&
+                !put_back_on_closed_face(p, cell, xi))
               {
                 // A NaN position is an unstable run, not a point that left:
                 // it must never be removed quietly.
@@ -1346,6 +1347,25 @@ namespace mpm
           }
       }
     return n_moved;
+  }
+
+
+  template <int dim>
+  bool
+  MaterialPoints<dim>::put_back_on_closed_face(
+    typename Particles::ParticleHandler<dim>::particle_iterator &p,
+    typename BackgroundGrid<dim>::CellCoordinates               &cell,
+    Point<dim>                                                  &xi)
+  {
+    Point<dim>     x = p->get_location();
+    double        *q = p->get_properties().data();
+    Tensor<1, dim> v = Fields::vector<dim>(q + fields.velocity);
+    if (!grid.parameters().put_back_behind_closed_face(x, v) ||
+        !grid.locate(x, cell, xi))
+      return false;
+    p->set_location(x);
+    Fields::store(v, q + fields.velocity);
+    return true;
   }
 
 

@@ -33,11 +33,14 @@ namespace mpm
       "fields",
       "velocity, displacement, stress, J, mass, volume, body",
       Patterns::MultipleSelection("velocity|displacement|stress|J|mass|volume|"
-                                  "body|plastic strain|damage|pressure|"
+                                  "body|plastic strain|opening|damage|"
+                                  "pressure|"
                                   "von Mises stress"),
       "Particle fields written to VTU, any of: velocity, "
       "displacement, stress, J, mass, volume, body, plastic strain "
-      "(equivalent, 0 for elastic bodies), damage (d, 0 for bodies "
+      "(equivalent, 0 for elastic bodies), opening (the log volume a "
+      "cohesionless body gained at zero stress, where its grains parted; 0 "
+      "elsewhere), damage (d, 0 for bodies "
       "without damage), pressure (-tr(sigma)/3, with the "
       "out-of-plane stress in 2D), von Mises stress (sqrt(3/2 s:s), "
       "likewise). 'displacement' makes every point store its initial "
@@ -653,6 +656,9 @@ namespace mpm
     scalar_of("body", "body", [&l](const double *q) { return q[l.body]; });
     scalar_of("plastic strain", "plastic_strain", [&l](const double *q) {
       return l.plastic_strain == FieldLayout::absent ? 0. : q[l.plastic_strain];
+    });
+    scalar_of("opening", "opening", [&l](const double *q) {
+      return l.opening == FieldLayout::absent ? 0. : q[l.opening];
     });
     scalar_of("damage", "damage", [&l](const double *q) {
       return l.damage == FieldLayout::absent ? 0. : q[l.damage];

@@ -496,6 +496,66 @@ namespace
 
 
   // -------------------------------------------------------------------------
+  /**
+   * A cohesionless point pulled apart parts at zero stress and closes
+   * again without stress: stretched by J = 1.2^dim it keeps zero stress
+   * and an opening ln J; squeezed back half way and then all the way it
+   * stays at zero stress (the opening halves, then vanishes; before the
+   * opening existed, the way back was elastic and the point ended at
+   * -K ln 1.2^dim); squeezed beyond, it answers elastically from its
+   * packing, tau = K ln J I. A point with cohesion never reaches zero
+   * stress at its tip and stores no opening.
+   */
+  template <int dim>
+  void
+  cohesionless_parting(const std::string &model)
+  {
+    const std::vector<std::pair<std::string, std::string>> settings = {
+      {"Young's modulus", "1e7"},
+      {"Poisson's ratio", "0.3"},
+      {"cohesion", "0"},
+      {"friction angle", "30"},
+      {"dilation angle", "0"}};
+    const std::string name =
+      std::to_string(dim) + "D " + model + ", no cohesion: ";
+    Point<dim>   p(model, settings);
+    const double K         = 1e7 / (3 * (1 - 2 * 0.3));
+    auto         isotropic = [&](const double stretch) {
+      Tensor<2, dim> dF;
+      for (unsigned int d = 0; d < dim; ++d)
+        dF[d][d] = stretch;
+      p.step_by(dF);
+    };
+    const double log_J = dim * std::log(1.2);
+    isotropic(1.2);
+    check(name + "pulled apart, |tau| / K", p.tau().norm() / K, 1e-14);
+    check("  opening / ln J - 1", p.q[p.layout.opening] / log_J - 1, 1e-12);
+    isotropic(std::pow(1.2, -0.5));
+    check("  squeezed half way back, |tau| / K", p.tau().norm() / K, 1e-14);
+    check("  opening / (ln J / 2) - 1",
+          p.q[p.layout.opening] / (log_J / 2) - 1,
+          1e-12);
+    isotropic(std::pow(1.2, -0.5));
+    check("  squeezed all the way back, |tau| / K", p.tau().norm() / K, 1e-14);
+    check("  opening", p.q[p.layout.opening], 1e-14);
+    // Squeezed beyond by 0.99 in-plane: elastic from the packing,
+    // tau_xx = (dim lambda + 2 mu) ln 0.99 (plane strain in 2D).
+    isotropic(0.99);
+    const double lambda = 1e7 * 0.3 / (1.3 * 0.4), mu = 1e7 / 2.6;
+    check("  squeezed beyond: tau_xx / ((dim lambda + 2 mu) ln 0.99) - 1",
+          p.tau()[0][0] / ((dim * lambda + 2 * mu) * std::log(0.99)) - 1,
+          1e-12);
+
+    auto cohesive      = settings;
+    cohesive[2].second = "1e4";
+    const Point<dim> q(model, cohesive);
+    check_true(std::to_string(dim) + "D " + model +
+                 " with cohesion stores no opening",
+               q.layout.opening == FieldLayout::absent);
+  }
+
+
+  // -------------------------------------------------------------------------
   /// 1/2 ln of a symmetric positive tensor.
   SymmetricTensor<2, 3>
   half_log(const SymmetricTensor<2, 3> &b)
@@ -599,6 +659,13 @@ main()
   mohr_coulomb_regions();
 
   drucker_prager_apex();
+
+  std::cout << "Cohesionless points part and close" << std::endl;
+  for (const std::string model : {"Mohr-Coulomb", "Drucker-Prager"})
+    {
+      cohesionless_parting<2>(model);
+      cohesionless_parting<3>(model);
+    }
 
   std::cout << "Random strain paths" << std::endl;
   const double c = 1e4, phi = 30 * M_PI / 180;

@@ -15,6 +15,8 @@ and never in a crash (a signal, another exit code) or a hang (--timeout).
   fuzz_parameters.py --exe ... --np 2 --sample 20       each case on 2
       MPI ranks (collective failures must stop every rank: a rank left
       waiting is a hang)
+  fuzz_parameters.py --exe ... --part 2/4               the second
+      quarter of the sweep (every 4th case from the 2nd)
   fuzz_parameters.py --exe ... --report                 also list the
       input errors that name another parameter than the bad one, and the
       stopped runs, for review (they are not failures)
@@ -92,7 +94,13 @@ def main():
                         help="cases run at once")
     parser.add_argument("--np", type=int, default=1,
                         help="MPI ranks per case")
+    parser.add_argument("--part", default="1/1",
+                        help="K/N: run every N-th case from the K-th, so "
+                        "that the full sweep can be run in N pieces")
     a = parser.parse_args()
+    part, parts = (int(x) for x in a.part.split("/"))
+    if not 1 <= part <= parts:
+        parser.error("--part K/N needs 1 <= K <= N")
     # The scenes that are malformed on purpose (their own tests) are left
     # out.
     malformed = ("malformed.prm", "empty.prm", "duplicate_parameter.prm",
@@ -106,6 +114,7 @@ def main():
     if a.sample:
         random.seed(a.seed)
         cases = random.sample(cases, min(a.sample, len(cases)))
+    cases = cases[part - 1::parts]
     def run(case):
         """Run one case in a directory of its own; (case, exit code or
         None for a timeout, stderr)."""

@@ -84,6 +84,19 @@ namespace mpm
     /// coordinates in it), or numbers::invalid_unsigned_int outside.
     unsigned int
     locate(const Point<dim> &x, Point<dim> &reference) const;
+
+    /**
+     * A point found less than a quarter of a cell behind a closed face
+     * (fixed, slip or friction) is put back on the face and its velocity
+     * out through it removed: the face holds the nodes, not the points,
+     * and a point on a no-slip floor under material that presses down
+     * takes a share of the downward velocity of the nodes above it, so it
+     * can cross the face by round-off or a small fraction of a step's
+     * motion. True if @p x was put back (and @p velocity changed); false if
+     * it is inside, or further out, or behind a face that lets it leave.
+     */
+    bool
+    put_back_behind_closed_face(Point<dim> &x, Tensor<1, dim> &velocity) const;
   };
 
 

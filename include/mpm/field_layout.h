@@ -38,6 +38,9 @@ namespace mpm
     /// the embedded form of Fields::embedded (3, 4 or 6 values).
     unsigned int elastic_left_cauchy_green = absent;
     unsigned int plastic_strain = absent; ///< 1, equivalent plastic strain
+    /// 1, the log volume a cohesionless material gained at zero stress (its
+    /// grains parted), given back without stress when it is compressed.
+    unsigned int opening        = absent;
     unsigned int damage         = absent; ///< 1, damage d
     unsigned int damage_history = absent; ///< 1, its history variable kappa
     /// dim: the outward area vector N dA of the loaded surface a point of
@@ -87,6 +90,7 @@ namespace mpm
     bool affine_velocity           = false;
     bool elastic_left_cauchy_green = false;
     bool plastic_strain            = false;
+    bool opening                   = false;
     bool damage                    = false;
     bool surface_area              = false;
     /// Offset and load moment: only a load on a face of a shape has one.

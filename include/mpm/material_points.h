@@ -331,6 +331,13 @@ namespace mpm
     describe_leaving_point(
       const typename Particles::ParticleHandler<dim>::particle_iterator &p)
       const;
+    /// GridParameters::put_back_behind_closed_face() for point @p p; true
+    /// if it was put back, with its @p cell and reference location @p xi.
+    bool
+    put_back_on_closed_face(
+      typename Particles::ParticleHandler<dim>::particle_iterator &p,
+      typename BackgroundGrid<dim>::CellCoordinates               &cell,
+      Point<dim>                                                  &xi);
 
     const BackgroundGrid<dim> &grid;
     /// A diagnosis if the point @p x of body @p b lies inside another

@@ -121,6 +121,13 @@ namespace mpm
         return true;
       }
 
+      /// The apex (or the cutoff's corner) is at zero stress.
+      bool
+      can_part() const
+      {
+        return p_max == 0;
+      }
+
       const double mu, K;
       double       eta, xi, eta_bar, xi_c, p_max;
     };

@@ -397,6 +397,17 @@ namespace mpm
         return returned(x);
       }
 
+      /// The apex (or the cutoffs' corner) is at zero stress, at the peak
+      /// or once softened.
+      bool
+      can_part() const
+      {
+        const auto tip_at_zero = [this](const Strength &m) {
+          return cutoff == 0 || (m.c == 0 && std::sin(m.phi) > 0);
+        };
+        return tip_at_zero(peak) || (softening && tip_at_zero(residual));
+      }
+
       const PrincipalElasticity elasticity;
       Strength                  peak, residual;
       Surface                   peak_surface;

@@ -21,6 +21,7 @@
 #include <mpm/materials/nonlocal_average.h>
 #include <mpm/materials/pointwise.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -279,6 +280,18 @@ namespace mpm
     };
 
 
+    /// A Flow with a can_part() member may return to zero stress (see Model).
+    template <typename Flow, typename = void>
+    struct CanPart : std::false_type
+    {
+    };
+    template <typename Flow>
+    struct CanPart<Flow, std::void_t<decltype(&Flow::can_part)>>
+      : std::true_type
+    {
+    };
+
+
     /**
      * A model in the log-strain framework. @p Flow corrects the elastic
      * trial state: a plastic flow returns it to its admissible set, a
@@ -301,7 +314,23 @@ namespace mpm
      *     template <int dim>
      *     void relax(std::array<double,3> &tau, double dt,
      *                const Tensor<2,dim> &L, const Spectral &s) const;
+     *     // Optional, plastic: true if the admissible set holds zero
+     *     // stress at its tip (no cohesion, or a tension cutoff of 0).
+     *     bool can_part() const;
      *   };
+     *
+     * A material without cohesion that is stretched returns to zero
+     * stress: its grains part, and the volume it gains at zero stress is
+     * not elastic. Stored as plastic strain alone, that volume would stay:
+     * compressed again, the point would resist at once as if its parted
+     * state were its packing, and a granular front torn into a sparse
+     * sheet (J of 3 to 20 behind a collapsing column) would rest as a
+     * foam of that density instead of closing up. So a flow that can part
+     * stores the volume gained at zero stress as the point's 'opening'
+     * (a log volume) and gives it back first, without stress, when the
+     * point is compressed: grains that have parted touch again before
+     * they push on each other (the disconnected phase of Dunatunga and
+     * Kamrin 2015).
      *
      * Every model takes the 'Damage' option (damage.h): the stress it
      * computes is softened by the damage of the point; its own state stays
@@ -338,6 +367,8 @@ namespace mpm
         requests.elastic_left_cauchy_green = true;
         if (Flow::is_plastic)
           requests.plastic_strain = true;
+        if constexpr (CanPart<Flow>::value)
+          requests.opening = flow.can_part();
         damage.request_fields(requests);
       }
 
@@ -384,6 +415,8 @@ namespace mpm
                 std::to_string(f) + " > 0)");
             p[layout.plastic_strain] = 0.;
           }
+        if (layout.opening != FieldLayout::absent)
+          p[layout.opening] = 0.;
         if (damage.enabled())
           {
             if (damage.equivalent_strain(s.values) / J >
@@ -464,16 +497,22 @@ namespace mpm
         const SymmetricTensor<2, 3> trial =
           push_forward<dim>(Fields::embedded<dim>(be_data),
                             increment<dim>(L, dt));
-        const Spectral        s         = decompose<dim>(trial);
-        std::array<double, 3> tau       = elasticity.stress(half_log(s));
-        bool                  corrected = false;
+        const Spectral        s      = decompose<dim>(trial);
+        std::array<double, 3> eps    = half_log(s);
+        const bool            parted = layout.opening != FieldLayout::absent;
+        bool corrected = parted && close_opening(eps, p[layout.opening]);
+        std::array<double, 3> tau = elasticity.stress(eps);
         if constexpr (Flow::is_plastic)
           {
             const std::array<double, 3> tau_trial = tau;
             double                     &eqps      = p[layout.plastic_strain];
-            corrected                             = flow.return_map(tau, eqps);
-            if (corrected)
-              eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
+            if (flow.return_map(tau, eqps))
+              {
+                corrected = true;
+                eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
+                if (parted)
+                  open(eps, tau, tau_trial, p[layout.opening]);
+              }
           }
         if constexpr (is_viscous)
           {
@@ -484,6 +523,38 @@ namespace mpm
           corrected ? stretch_tensor<dim>(elasticity.strain(tau), s) : trial,
           be_data);
         return {cauchy(tau, p, layout), s};
+      }
+
+      /// Give back the opening first when the trial strain @p eps compresses
+      /// the point: true if @p eps changed.
+      static bool
+      close_opening(std::array<double, 3> &eps, double &opening)
+      {
+        const double compression = -(eps[0] + eps[1] + eps[2]);
+        if (opening <= 0 || compression <= 0)
+          return false;
+        const double closed = std::min(opening, compression);
+        for (double &e : eps)
+          e += closed / 3;
+        opening -= closed;
+        return true;
+      }
+
+      /// A return to zero stress (@p tau, from @p tau_trial) parts the
+      /// point: its trial strain @p eps is all plastic, and the volume it
+      /// gains is opening.
+      static void
+      open(const std::array<double, 3> &eps,
+           const std::array<double, 3> &tau,
+           const std::array<double, 3> &tau_trial,
+           double                      &opening)
+      {
+        const double scale = std::max({std::abs(tau_trial[0]),
+                                       std::abs(tau_trial[1]),
+                                       std::abs(tau_trial[2])});
+        if (std::max({std::abs(tau[0]), std::abs(tau[1]), std::abs(tau[2])}) <=
+            1e-10 * scale)
+          opening += std::max(eps[0] + eps[1] + eps[2], 0.);
       }
 
       /// Principal Cauchy stresses tau / J of principal Kirchhoff stresses.

@@ -1,0 +1,169 @@
+#!/usr/bin/env python3
+"""The collapse of a column of aluminium rods against the experiment of Bui,
+Fukagawa, Sako and Ohno (2008).
+
+Runs benchmarks/granular/bui2008.prm on a ladder of grid sizes h and prints
+one CSV row per run: the toe of the deposit (the furthest point plus half a
+point spacing, and the front 99 % of the points stay behind), how far the
+column's top stays at its height next to the wall (the plateau: the last x
+from the wall where the deposit's surface is within 1 mm of 0.100 m), where
+the failure line meets the floor (the edge of the undeformed zone: the
+furthest point of the bottom 5 mm that moved less than 1 mm), the kinetic
+energy left (over the released potential energy: the deposit must be at
+rest) and the cost. The measured values, as issue 29 quotes them: toe
+0.44-0.46 m, plateau to x of about 0.03 m, failure line at the floor near
+x = 0.18 m.
+
+  bui2008.py --exe build/dealii-mpm                      the ladder
+  bui2008.py --exe ... --h 0.005 --check                 a ctest
+  bui2008.py --exe ... --plot bui2008.png                profiles beside
+      the measurements (needs matplotlib)
+  bui2008.py --exe ... -s "Simulation/transfer=FLIP"     another scheme
+"""
+import argparse, os, sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_runner import cost, overrides, run_scene, sweep_arguments  # noqa: E402
+
+WIDTH, HEIGHT = 0.6, 0.12  # the grid (m)
+H0 = 0.1                   # the column's height (m)
+TOE = (0.44, 0.46)         # measured toe (m)
+PLATEAU = 0.03             # measured: the top kept for x up to about this
+FAILURE_FOOT = 0.18        # measured: the failure line meets the floor
+# The ctest's bounds: the toe with the experiment's scatter and the
+# resolution of the coarse grid, the plateau within a cell or two.
+CHECK_TOE = (0.42, 0.50)
+CHECK_PLATEAU = (0.01, 0.06)
+UNDEFORMED = 1e-3          # a point that moved less than this (m)
+
+
+def points_per_cell(extra):
+    """Points per cell and direction: the scene's 2 unless overridden."""
+    n = 2
+    for a, b in zip(extra, extra[1:]):
+        if a == "-s" and b.startswith("Bodies/Body 0/particles per cell="):
+            n = int(b.split("=", 1)[1])
+    return n
+
+
+def surface(points, spacing, h):
+    """The deposit's surface: (x, top) per column of one cell, top being
+    the highest point plus half a point spacing."""
+    top = {}
+    for x, y, _ in points:
+        k = int(x / h)
+        top[k] = max(top.get(k, 0.), y + spacing / 2)
+    return [((k + 0.5) * h, top[k]) for k in sorted(top)]
+
+
+def plateau_end(profile, h):
+    """The last x from the wall before the surface falls 1 mm below H0."""
+    end = 0.
+    for x, top in profile:
+        if top < H0 - 1e-3:
+            break
+        end = x + h / 2
+    return end
+
+
+def failure_line(points, displacement, spacing):
+    """The edge of the undeformed zone: per row of one spacing, the
+    furthest initial x of a point that moved less than UNDEFORMED."""
+    edge = {}
+    for (x, y, _), u in zip(points, displacement):
+        x0, y0 = x - u[0], y - u[1]
+        if (u[0] ** 2 + u[1] ** 2) ** 0.5 < UNDEFORMED:
+            k = int(y0 / spacing)
+            edge[k] = max(edge.get(k, 0.), x0 + spacing / 2)
+    return [(edge[k], (k + 0.5) * spacing) for k in sorted(edge)]
+
+
+def run(exe, h, extra):
+    nx, ny = round(WIDTH / h), round(HEIGHT / h)
+    r = run_scene(exe, "granular/bui2008.prm",
+                  ["-s", "Grid/cells=%d, %d" % (nx, ny)] + extra,
+                  frame=-1, fields="displacement",
+                  frame_fields=("displacement",))
+    spacing = h / points_per_cell(extra)
+    last = r.rows[-1]
+    toe = max(x for x, _, _ in r.points) + spacing / 2
+    toe99 = float(last["body0_x_front_max"]) + spacing / 2
+    profile = surface(r.points, spacing, h)
+    line = failure_line(r.points, r.fields["displacement"], spacing)
+    bottom = [x for x, y in line if y < 5e-3]
+    foot = max(bottom) if bottom else 0.
+    released = float(r.rows[0]["gravitational_energy"]) - \
+        float(last["gravitational_energy"])
+    rest = float(last["kinetic_energy"]) / max(released, 1e-300)
+    wall, ns = cost(r)
+    return dict(h=h, toe=toe, toe99=toe99,
+                plateau=plateau_end(profile, h), foot=foot, rest=rest,
+                wall=wall, ns=ns, profile=profile, line=line)
+
+
+def plot(runs, path, label):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(8, 2.8))
+    for r in runs:
+        mm = r["h"] * 1e3
+        ax.plot(*zip(*r["profile"]), "-", lw=1,
+                label="surface, h = %g mm" % mm)
+        ax.plot(*zip(*r["line"]), "--", lw=1,
+                label="failure line (moved < 1 mm), h = %g mm" % mm)
+    ax.plot([0, 0.2, 0.2], [H0, H0, 0], ":", color="gray",
+            label="column at t = 0")
+    ax.plot(TOE, [0, 0], "k-", lw=4, label="measured toe")
+    ax.plot([0, PLATEAU], [H0, H0], "ks-", label="measured plateau")
+    ax.plot([FAILURE_FOOT], [0], "k^", ms=8,
+            label="measured failure line at the floor")
+    ax.set_xlim(0, 0.5)
+    ax.set_ylim(0, 0.11)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.legend(fontsize=6, loc="upper right")
+    ax.set_title("Bui et al. (2008) collapse: %s" % label, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    sweep_arguments(parser)
+    parser.add_argument("--h", default="0.005,0.0025,0.00125",
+                        help="grid sizes in m, comma-separated")
+    parser.add_argument("--check", action="store_true",
+                        help="fail unless every toe lies in %g-%g m, every "
+                        "plateau in %g-%g m and every deposit is at rest" %
+                        (CHECK_TOE + CHECK_PLATEAU))
+    parser.add_argument("--plot", help="PNG of the profiles")
+    parser.add_argument("--label", default="MUSL, APIC, quadratic B-spline",
+                        help="the scheme, for the plot's title")
+    a = parser.parse_args()
+    extra = overrides(a)
+    print("h,toe,toe_99,plateau,failure_foot,kinetic_over_released,"
+          "wall_seconds,ns_per_particle_step")
+    runs, ok = [], True
+    for h in [float(x) for x in a.h.split(",")]:
+        r = run(a.exe, h, extra)
+        runs.append(r)
+        print("%g,%.4f,%.4f,%.4f,%.4f,%.2e,%.2f,%.1f" % (
+            h, r["toe"], r["toe99"], r["plateau"], r["foot"], r["rest"],
+            r["wall"], r["ns"]), flush=True)
+        ok = ok and CHECK_TOE[0] <= r["toe"] <= CHECK_TOE[1] and \
+            CHECK_PLATEAU[0] <= r["plateau"] <= CHECK_PLATEAU[1] and \
+            r["rest"] < 1e-3
+    if a.plot:
+        plot(runs, a.plot, a.label)
+    if a.check and not ok:
+        print("FAILED: a toe or plateau lies outside its bounds or a deposit "
+              "is still moving")
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
