@@ -22,6 +22,7 @@ CASES = {
                             "-s", "Grid/upper corner=1.85, 0.85", "-s", "Grid/cells=74, 34",
                             "-s", "Bodies/Body 0/upper corner=0.2, 0.8",
                             "-s", "Simulation/end time=2.3"]),
+    "bui2008_collapse": ("granular/bui2008.prm", []),
     "strip_footing": ("plasticity/strip_footing.prm",
                       ["-s", "Grid/cells=50, 35", "-s", "Simulation/end time=2"]),
     "thick_cylinder_to_0.99_pL": ("plasticity/thick_cylinder.prm", []),

@@ -36,15 +36,15 @@ def laws(a):
     return lube, lajeunesse
 
 
-def run(exe, a, n, end_time, extra):
+def run(exe, a, n, end_time, extra, rho=1500, K0=0.5):
     h = L0 / n
     # Room for the runout (a safe 1.5x the larger law) and the column.
     width = L0 * (1 + 1.5 * max(laws(a))) + 2 * h
     height = a * L0 + 2 * h
     nx, ny = round(width / h), round(height / h)
     r = run_scene(exe, "granular/column_collapse.prm", [
-        "-s", "Simulation/constants=a=%g, L0=%g, rho=1500, g=9.81, "
-              "K0=0.5" % (a, L0),
+        "-s", "Simulation/constants=a=%g, L0=%g, rho=%.17g, g=9.81, "
+              "K0=%.17g" % (a, L0, rho, K0),
         "-s", "Simulation/end time=%g" % end_time,
         "-s", "Grid/upper corner=%.17g, %.17g" % (nx * h, ny * h),
         "-s", "Grid/cells=%d, %d" % (nx, ny),
@@ -82,6 +82,11 @@ def main():
     parser.add_argument("--cells", default="8,16",
                         help="cells across the column width, comma-separated")
     parser.add_argument("--scatter", type=float, default=0.2)
+    parser.add_argument("--density", type=float, default=1500,
+                        help="the initial stress's density (with another "
+                        "material, give its 'density' with -s too)")
+    parser.add_argument("--k0", type=float, default=0.5,
+                        help="the initial stress's K0 (1 - sin phi)")
     parser.add_argument("--check", action="store_true",
                         help="fail unless every runout lies in the envelope "
                              "and every deposit is at rest")
@@ -98,7 +103,7 @@ def main():
         end_time = max(0.8, 8 * (aspect * L0 / 9.81) ** 0.5)
         for n in [int(x) for x in a.cells.split(",")]:
             runout, runout99, thick, rest, wall, ns = run(
-                a.exe, aspect, n, end_time, extra)
+                a.exe, aspect, n, end_time, extra, a.density, a.k0)
             lube, lajeunesse = laws(aspect)
             low = (1 - a.scatter) * min(lube, lajeunesse)
             high = (1 + a.scatter) * max(lube, lajeunesse)
