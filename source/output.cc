@@ -483,8 +483,10 @@ namespace mpm
     std::string failure;
     if (resume != nullptr)
       {
-        counter        = resume->get("output_counter");
-        next_time      = resume->get("output_next_time");
+        counter = resume->get("output_counter");
+        // From the checkpoint's time, not its next output time: a restart
+        // may change the interval (the saved time belongs to the old one).
+        next_time      = output_time_after(resume->get("time"));
         particle_files = resume->particle_files;
         grid_files     = resume->grid_files;
       }
@@ -571,7 +573,23 @@ namespace mpm
     if (prm.grid_output)
       write_grid();
     ++counter;
-    next_time = (prm.interval > 0 ? multiple_of(counter, prm.interval) : 0);
+    next_time = output_time_after(integrator.time());
+  }
+
+
+  template <int dim>
+  double
+  Output<dim>::output_time_after(const double t) const
+  {
+    // The multiples of the interval, counted from t = 0 whatever the
+    // frame counter says: after a restart with another interval the frames
+    // carry on the new interval's times (before, counter * interval: a
+    // finer interval wrote a frame every step until the counter caught
+    // up).
+    return prm.interval > 0
+             ? multiple_of(std::floor(t / prm.interval * (1 + 1e-12)) + 1,
+                           prm.interval)
+             : 0;
   }
 
 
@@ -939,10 +957,9 @@ namespace mpm
   void
   Output<dim>::save_state(RunState &state) const
   {
-    state.values["output_counter"]   = counter;
-    state.values["output_next_time"] = next_time;
-    state.particle_files             = particle_files;
-    state.grid_files                 = grid_files;
+    state.values["output_counter"] = counter;
+    state.particle_files           = particle_files;
+    state.grid_files               = grid_files;
   }
 
 

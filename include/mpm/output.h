@@ -98,8 +98,8 @@ namespace mpm
            MPI_Comm                        comm,
            const RunState                 *resume = nullptr);
 
-    /// The frame counter, next output time and the .pvd records, for a
-    /// checkpoint (a restart passes them back to the constructor).
+    /// The frame counter and the .pvd records, for a checkpoint (a restart
+    /// passes them back to the constructor).
     void
     save_state(RunState &state) const;
 
@@ -118,6 +118,10 @@ namespace mpm
     }
 
   private:
+    /// The first output time after time @p t.
+    double
+    output_time_after(const double t) const;
+
     /// A point field of 'Output/fields': its name in the files, its
     /// values per point and how they read (scalar, vector or tensor), and
     /// how they are computed from a point.
