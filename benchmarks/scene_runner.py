@@ -65,6 +65,16 @@ def least_squares_slope(samples):
         sum((t - mean_t) ** 2 for t, _ in samples)
 
 
+def points_per_cell(extra):
+    """Points per cell and direction: the scene's 2 unless
+    overridden by a 'particles per cell' in the overrides @p extra."""
+    n = 2
+    for a, b in zip(extra, extra[1:]):
+        if a == "-s" and b.startswith("Bodies/Body 0/particles per cell="):
+            n = int(b.split("=", 1)[1])
+    return n
+
+
 def sweep_arguments(parser):
     """The arguments every driver takes: the executable, and overrides."""
     parser.add_argument("--exe", required=True, help="the dealii-mpm binary")

@@ -412,8 +412,9 @@ foreach(basis "quadratic B-spline" "cubic B-spline")
       --exe $<TARGET_FILE:dealii-mpm> --cells 4 --check -s "Simulation/basis=${basis}")
 endforeach()
 #    The collapse of a column of aluminium rods (Bui et al. 2008; MUSL,
-#    APIC, quadratic B-spline, h = 5 mm): the toe within 0.42-0.50 m
-#    (measured 0.44-0.46; here 0.444), the column's top kept at 0.100 m
+#    APIC, quadratic B-spline, h = 5 mm): the toe (where the deposit is a
+#    rod, 1.5 mm, thick) within 0.42-0.50 m (measured 0.44-0.46; here
+#    0.445), the column's top kept at 0.100 m
 #    next to the wall over 0.01-0.06 m (measured about 0.03; here 0.015),
 #    at rest. Before cohesionless points closed their opening, the toe was
 #    a foam of points at J up to 19 reaching 0.59 m. Release only (25 s).

@@ -26,7 +26,8 @@ the experiments (--scatter, 20 % by default).
 import argparse, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import cost, overrides, run_scene, sweep_arguments  # noqa: E402
+from scene_runner import (cost, overrides, points_per_cell,  # noqa: E402
+                          run_scene, sweep_arguments)
 L0 = 0.2
 
 
@@ -61,15 +62,6 @@ def run(exe, a, n, end_time, extra, rho=1500, K0=0.5):
     rest = float(last["kinetic_energy"]) / max(potential, 1e-300)
     return ((front - L0) / L0, (front99 - L0) / L0, (thick - L0) / L0,
             rest) + cost(r)
-
-
-def points_per_cell(extra):
-    """Points per cell and direction: the scene's 2 unless overridden."""
-    n = 2
-    for a, b in zip(extra, extra[1:]):
-        if a == "-s" and b.startswith("Bodies/Body 0/particles per cell="):
-            n = int(b.split("=", 1)[1])
-    return n
 
 
 def main():
