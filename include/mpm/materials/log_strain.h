@@ -497,10 +497,11 @@ namespace mpm
         const SymmetricTensor<2, 3> trial =
           push_forward<dim>(Fields::embedded<dim>(be_data),
                             increment<dim>(L, dt));
-        const Spectral        s      = decompose<dim>(trial);
-        std::array<double, 3> eps    = half_log(s);
-        const bool            parted = layout.opening != FieldLayout::absent;
-        bool corrected = parted && close_opening(eps, p[layout.opening]);
+        const Spectral        s   = decompose<dim>(trial);
+        std::array<double, 3> eps = half_log(s);
+        const bool stores_opening = layout.opening != FieldLayout::absent;
+        bool       corrected =
+          stores_opening && close_opening(eps, p[layout.opening]);
         std::array<double, 3> tau = elasticity.stress(eps);
         if constexpr (Flow::is_plastic)
           {
@@ -510,7 +511,7 @@ namespace mpm
               {
                 corrected = true;
                 eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
-                if (parted)
+                if (stores_opening)
                   open(eps, tau, tau_trial, p[layout.opening]);
               }
           }
