@@ -65,14 +65,19 @@ def least_squares_slope(samples):
         sum((t - mean_t) ** 2 for t, _ in samples)
 
 
-def points_per_cell(extra):
-    """Points per cell and direction: the scene's 2 unless
-    overridden by a 'particles per cell' in the overrides @p extra."""
-    n = 2
+def override(extra, path, default):
+    """The value the overrides @p extra ('-s', 'path=value', ...) give the
+    entry @p path (the last one wins), else @p default."""
+    value = default
     for a, b in zip(extra, extra[1:]):
-        if a == "-s" and b.startswith("Bodies/Body 0/particles per cell="):
-            n = int(b.split("=", 1)[1])
-    return n
+        if a == "-s" and b.startswith(path + "="):
+            value = b.split("=", 1)[1]
+    return value
+
+
+def points_per_cell(extra):
+    """Points per cell and direction: the scene's 2 unless overridden."""
+    return int(override(extra, "Bodies/Body 0/particles per cell", 2))
 
 
 def sweep_arguments(parser):

@@ -586,10 +586,7 @@ namespace mpm
     // carry on the new interval's times (before, counter * interval: a
     // finer interval wrote a frame every step until the counter caught
     // up).
-    return prm.interval > 0
-             ? multiple_of(std::floor(t / prm.interval * (1 + 1e-12)) + 1,
-                           prm.interval)
-             : 0;
+    return prm.interval > 0 ? multiple_after(t, prm.interval) : 0;
   }
 
 

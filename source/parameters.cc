@@ -5,6 +5,7 @@
 #include <mpm/parameters.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -63,6 +64,13 @@ namespace mpm
     char decimal[32];
     std::snprintf(decimal, sizeof(decimal), "%.15g", k * interval);
     return std::strtod(decimal, nullptr);
+  }
+
+
+  double
+  multiple_after(const double t, const double interval)
+  {
+    return multiple_of(std::floor(t / interval * (1 + 1e-12)) + 1, interval);
   }
 
 

@@ -584,8 +584,7 @@ namespace mpm
       return;
     TimerOutput::Scope scope(*timer, "checkpoint");
     if (c.interval > 0)
-      next_checkpoint_time =
-        multiple_of(std::floor(now / c.interval * (1 + 1e-12)) + 1, c.interval);
+      next_checkpoint_time = multiple_after(now, c.interval);
     RunState state;
     integrator->save_state(state);
     verification->save_state(state);

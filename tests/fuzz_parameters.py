@@ -98,9 +98,12 @@ def main():
                         help="K/N: run every N-th case from the K-th, so "
                         "that the full sweep can be run in N pieces")
     a = parser.parse_args()
-    part, parts = (int(x) for x in a.part.split("/"))
+    try:
+        part, parts = (int(x) for x in a.part.split("/"))
+    except ValueError:
+        part, parts = 0, 0
     if not 1 <= part <= parts:
-        parser.error("--part K/N needs 1 <= K <= N")
+        parser.error("--part '%s': needs K/N with 1 <= K <= N" % a.part)
     # The scenes that are malformed on purpose (their own tests) are left
     # out.
     malformed = ("malformed.prm", "empty.prm", "duplicate_parameter.prm",

@@ -22,12 +22,15 @@ the experiments (--scatter, 20 % by default).
 
   column_collapse.py --exe build/dealii-mpm                    the sweep
   column_collapse.py --exe ... --aspect 1 --cells 8 --check    a ctest
+  column_collapse.py --exe ... -s "Bodies/Body 0/density=1925" \
+      -s "Bodies/Body 0/Mohr-Coulomb/friction angle=22.2" ...   another
+      material: the initial stress follows its density and 1 - sin phi
 """
-import argparse, os, sys
+import argparse, math, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_runner import (cost, overrides, points_per_cell,  # noqa: E402
-                          run_scene, sweep_arguments)
+from scene_runner import (cost, override, overrides,  # noqa: E402
+                          points_per_cell, run_scene, sweep_arguments)
 L0 = 0.2
 
 
@@ -37,8 +40,19 @@ def laws(a):
     return lube, lajeunesse
 
 
-def run(exe, a, n, end_time, extra, rho=1500, K0=0.5):
+def initial_stress_constants(extra):
+    """The density and K0 = 1 - sin phi of the initial stress: the scene's
+    (1500, 0.5) unless the overrides give the body another density or
+    friction angle."""
+    rho = float(override(extra, "Bodies/Body 0/density", 1500))
+    phi = override(extra, "Bodies/Body 0/Mohr-Coulomb/friction angle", None)
+    K0 = 0.5 if phi is None else 1 - math.sin(math.radians(float(phi)))
+    return rho, K0
+
+
+def run(exe, a, n, end_time, extra):
     h = L0 / n
+    rho, K0 = initial_stress_constants(extra)
     # Room for the runout (a safe 1.5x the larger law) and the column.
     width = L0 * (1 + 1.5 * max(laws(a))) + 2 * h
     height = a * L0 + 2 * h
@@ -74,11 +88,6 @@ def main():
     parser.add_argument("--cells", default="8,16",
                         help="cells across the column width, comma-separated")
     parser.add_argument("--scatter", type=float, default=0.2)
-    parser.add_argument("--density", type=float, default=1500,
-                        help="the initial stress's density (with another "
-                        "material, give its 'density' with -s too)")
-    parser.add_argument("--k0", type=float, default=0.5,
-                        help="the initial stress's K0 (1 - sin phi)")
     parser.add_argument("--check", action="store_true",
                         help="fail unless every runout lies in the envelope "
                              "and every deposit is at rest")
@@ -95,7 +104,7 @@ def main():
         end_time = max(0.8, 8 * (aspect * L0 / 9.81) ** 0.5)
         for n in [int(x) for x in a.cells.split(",")]:
             runout, runout99, thick, rest, wall, ns = run(
-                a.exe, aspect, n, end_time, extra, a.density, a.k0)
+                a.exe, aspect, n, end_time, extra)
             lube, lajeunesse = laws(aspect)
             low = (1 - a.scatter) * min(lube, lajeunesse)
             high = (1 + a.scatter) * max(lube, lajeunesse)

@@ -72,6 +72,12 @@ namespace mpm
   double
   multiple_of(const double k, const double interval);
 
+  /// The first multiple_of() @p interval after time @p t (a time that lies
+  /// on a multiple, up to round-off, counts as reached): the next output
+  /// or checkpoint time, counted from t = 0 whatever came before.
+  double
+  multiple_after(const double t, const double interval);
+
   /**
    * Helpers that read an entry of the current subsection of @p prm and
    * check it, so that every check produces the same kind of message. The
