@@ -450,6 +450,27 @@ foreach(speed 10 100)
          -s "Verification/energy drift bound=1e9"
          -s "Verification/momentum drift bound=1e9")
 endforeach()
+#    Two rigid walls closing on the disks at 10 m/s each, ten times their
+#    wave speed: they push the disks together and meet at x = 0.5 at
+#    t = 0.051. A point put back by one wall is then behind the other; the
+#    walls are tried in turn per point (a corner settles so), and a point
+#    still behind after that is pinched: the run stops naming it and keeps
+#    the output of t = 0.05 (issue 32). Before, both disks were packed into
+#    a sheet, the walls passed through each other and the run finished
+#    with exit 0.
+mpm_test(rigid_walls_pinch PRM two_disks.prm EXIT 2
+  ARGS -s "Boundary conditions/number of rigid walls=2"
+       -s "Boundary conditions/Rigid wall 0/point=-0.01, 0"
+       -s "Boundary conditions/Rigid wall 0/normal=1, 0"
+       -s "Boundary conditions/Rigid wall 0/velocity=10, 0"
+       -s "Boundary conditions/Rigid wall 1/point=1.01, 0"
+       -s "Boundary conditions/Rigid wall 1/normal=-1, 0"
+       -s "Boundary conditions/Rigid wall 1/velocity=-10, 0"
+       -s "Simulation/end time=0.06" -s "Output/interval=0.005"
+       -s "Verification/energy drift bound=1e9"
+       -s "Verification/momentum drift bound=1e9"
+  ERROR "run stopped: step [0-9]+, t = 0.05[01][0-9]*: material point [0-9]+ of body [01] at \\(0.49[0-9]* [0-9.]+\\) is pinched between rigid walls.*Output up to t = 0.05 "
+  FILES particles_00010.pvtu)
 #    So does a rigid body's prescribed speed, before its points have it
 #    (they start at 'initial velocity'): the second disk made rigid and
 #    driven at (-10, -10) m/s (one value for both) takes a first step of 0.5 h / (c + 14.14 m/s)

@@ -254,6 +254,11 @@ namespace mpm
     /// substepping).
     void
     explicit_step(const double dt);
+    /// Every rigid wall puts back the points that fell behind it by @p
+    /// time (RigidWall::put_back); stops the run if walls pinch a point
+    /// between them.
+    void
+    keep_points_in_front_of_rigid_walls(const double time);
     /// The explicit step's length: the CFL limit, or the fixed time step
     /// (checked against it).
     double

@@ -188,38 +188,32 @@ namespace mpm
 
   template <int dim>
   double
-  RigidWall<dim>::keep_points_in_front(Particles::ParticleHandler<dim> &points,
-                                       const FieldLayout               &l,
-                                       const double                     t)
+  RigidWall<dim>::put_back(Particles::ParticleAccessor<dim> &p,
+                           const FieldLayout                &l,
+                           const Point<dim>                 &position,
+                           Tensor<1, dim>                   &reaction,
+                           double                           &work) const
   {
-    const Tensor<1, dim> &n                 = prm.normal;
-    const Point<dim>      position          = prm.point + t * prm.velocity;
-    const double          wall_normal_speed = prm.velocity * n;
-    Tensor<1, dim>        reaction;
-    double                work = 0;
-    for (auto &p : points)
+    const Tensor<1, dim> &n       = prm.normal;
+    const double          overlap = -((p.get_location() - position) * n);
+    // Most points are in front: no root for them.
+    if (!(overlap > 0))
+      return 0;
+    double      *q     = p.get_properties().data();
+    const double depth = 0.25 * std::pow(q[l.volume], 1. / dim);
+    if (!(overlap > depth))
+      return 0;
+    p.set_location(p.get_location() + (overlap - depth) * n);
+    const Tensor<1, dim> v   = Fields::vector<dim>(q + l.velocity);
+    const double         lag = prm.velocity * n - v * n;
+    if (lag > 0)
       {
-        double      *q       = p.get_properties().data();
-        const double overlap = -((p.get_location() - position) * n);
-        // Most points are in front: no root for them.
-        if (!(overlap > 0))
-          continue;
-        const double depth = 0.25 * std::pow(q[l.volume], 1. / dim);
-        if (!(overlap > depth))
-          continue;
-        p.set_location(p.get_location() + (overlap - depth) * n);
-        const Tensor<1, dim> v   = Fields::vector<dim>(q + l.velocity);
-        const double         lag = wall_normal_speed - v * n;
-        if (lag > 0)
-          {
-            const Tensor<1, dim> v_new = v + lag * n;
-            Fields::store(v_new, q + l.velocity);
-            reaction -= q[l.mass] * lag * n;
-            work += 0.5 * q[l.mass] * (v_new.norm_square() - v.norm_square());
-          }
+        const Tensor<1, dim> v_new = v + lag * n;
+        Fields::store(v_new, q + l.velocity);
+        reaction -= q[l.mass] * lag * n;
+        work += 0.5 * q[l.mass] * (v_new.norm_square() - v.norm_square());
       }
-    meter.add(reaction);
-    return work;
+    return overlap - depth;
   }
 
 

@@ -91,19 +91,42 @@ namespace mpm
      * The penalty lets a point into the wall by a fraction of its size; a
      * wall faster than the body's waves would push points through it (at
      * 10 m/s into the soft disks they fell 2.7 cm, half a cell, behind in
-     * 5 steps). After the step's motion, at the wall's position at @p t, a
-     * point deeper than a quarter of its size (a penalty of M per point
-     * size keeps a body resting under its weight far shallower: rho g H h
-     * / M, 2e-5 m for a 1 m column of soil) is put back at that depth and
-     * moves
-     * along the normal at least as fast as the wall; its momentum change
-     * joins the wall's impulse. Returns the work done on the points (their
-     * kinetic energy gained), for the energy balance.
+     * 5 steps). After the step's motion, with the wall at @p position, a
+     * point @p p deeper than a quarter of its size (a penalty of M per
+     * point size keeps a body resting under its weight far shallower: rho g
+     * H h / M, 2e-5 m for a 1 m column of soil) is put back at that depth
+     * and moves along the normal at least as fast as the wall; its momentum
+     * change is added to @p reaction (the wall's impulse: add_impulse()) and
+     * the kinetic energy it gains to @p work (for the energy balance).
+     * Returns how far the point was moved (0 if it was not).
      */
     double
-    keep_points_in_front(Particles::ParticleHandler<dim> &points,
-                         const FieldLayout               &layout,
-                         const double                     t);
+    put_back(Particles::ParticleAccessor<dim> &p,
+             const FieldLayout                &layout,
+             const Point<dim>                 &position,
+             Tensor<1, dim>                   &reaction,
+             double                           &work) const;
+
+    /// Where the wall's point is at time @p t.
+    Point<dim>
+    position(const double t) const
+    {
+      return prm.point + t * prm.velocity;
+    }
+
+    /// Counts @p impulse of the material on the wall in its force.
+    void
+    add_impulse(const Tensor<1, dim> &impulse)
+    {
+      meter.add(impulse);
+    }
+
+    /// The name of the wall's subsection, for messages.
+    std::string
+    name() const
+    {
+      return "Boundary conditions/Rigid wall " + std::to_string(prm.index);
+    }
 
     /// The wall's speed: the time step must let no point cross it in a
     /// step (TimeIntegrator::stable_time_step).
