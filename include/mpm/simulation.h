@@ -74,6 +74,8 @@ namespace mpm
     void
     warn_of_pic_viscosity() const;
     void
+    warn_of_apic_at_rough_faces() const;
+    void
     print_performance(const double wall_seconds,
                       const double step_seconds) const;
     /// Work of the busiest rank over the mean, less 1 (collective).

@@ -49,6 +49,17 @@ namespace mpm
       return requests.deformation_gradient;
     }
 
+    /// Can the material part, returning to zero stress when pulled apart
+    /// (a cohesionless flow: it stores an opening)? Derived from
+    /// request_fields.
+    bool
+    can_part() const
+    {
+      FieldRequests requests;
+      request_fields(requests);
+      return requests.opening;
+    }
+
     /// Can the model start from a given stress (initialise_point)?
     virtual bool
     accepts_initial_stress() const
