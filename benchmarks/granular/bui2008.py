@@ -142,7 +142,7 @@ def main():
                         "plateau in %g-%g m and every deposit is at rest" %
                         (CHECK_TOE + CHECK_PLATEAU))
     parser.add_argument("--plot", help="PNG of the profiles")
-    parser.add_argument("--label", default="MUSL, APIC, quadratic B-spline",
+    parser.add_argument("--label", default="MUSL, FLIP 0.999, quadratic B-spline",
                         help="the scheme, for the plot's title")
     a = parser.parse_args()
     extra = overrides(a)
