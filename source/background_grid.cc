@@ -285,6 +285,37 @@ namespace mpm
   }
 
 
+  /**
+   * A cell must be a size the arithmetic can work with: its area and volume,
+   * and the sizes and masses of the points in it, normal numbers (a grid
+   * 1e-308 m across had subnormal cells, and the run failed in an
+   * eigensolver naming nothing, issue 32), and its corners apart in the
+   * coordinates' precision.
+   */
+  template <int dim>
+  void
+  GridParameters<dim>::check_cells_are_resolved(
+    const std::string &upper_corner_text) const
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double h = (upper_corner[d] - lower_corner[d]) / n_cells[d];
+        const double coordinate =
+          std::max(std::abs(lower_corner[d]), std::abs(upper_corner[d]));
+        if (!(h >= 1e-50) || !(h >= 1e-10 * coordinate))
+          {
+            std::ostringstream msg;
+            msg << "with 'Grid/lower corner' and 'Grid/cells' gives cells " << h
+                << " m wide in direction " << d
+                << ": a cell must be at least 1e-50 m and 1e-10 of its "
+                   "corners' distance from the origin ("
+                << 1e-10 * coordinate << " m here)";
+            throw InputError("Grid/upper corner", upper_corner_text, msg.str());
+          }
+      }
+  }
+
+
   template <int dim>
   void
   GridParameters<dim>::parse_parameters(ParameterHandler &prm)
@@ -308,6 +339,7 @@ namespace mpm
                            "must be whole numbers in [1, 100000]");
         n_cells[d] = static_cast<unsigned int>(cells[d]);
       }
+    check_cells_are_resolved(prm.get("upper corner"));
     tile_size = parse_tile_size<dim>(prm.get("cells per tile"), n_cells);
     imbalance_limit =
       Parse::bounded_double(prm, "Grid", "load imbalance limit", 0, 1e300);

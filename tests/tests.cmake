@@ -456,6 +456,12 @@ foreach(speed 10 100)
          -s "Verification/energy drift bound=1e9"
          -s "Verification/momentum drift bound=1e9")
 endforeach()
+#    A grid too small for the arithmetic is an input error naming its
+#    extent (the fuzzer's Taylor bar with 'Grid/upper corner = 1e-308' had
+#    subnormal cells and failed in an eigensolver naming nothing; issue 32).
+mpm_test(bad_grid_subnormal_cells PRM ../benchmarks/impact/taylor_bar.prm EXIT 1
+  ARGS -s "Grid/upper corner=1e-308"
+  ERROR "parameter 'Grid/upper corner' = '1e-308': with 'Grid/lower corner' and 'Grid/cells' gives cells [0-9.e-]+ m wide in direction 0: a cell must be at least 1e-50 m")
 #    Two rigid walls closing on the disks at 10 m/s each, ten times their
 #    wave speed: they push the disks together and meet at x = 0.5 at
 #    t = 0.051. A point put back by one wall is then behind the other; the

@@ -62,6 +62,12 @@ namespace mpm
     void
     check_grid_fits_in_memory(const std::string &cells_text) const;
 
+    /// Stop with an InputError naming 'Grid/upper corner' if the cells are
+    /// too small for the arithmetic (subnormal areas or volumes) or for the
+    /// coordinates' precision.
+    void
+    check_cells_are_resolved(const std::string &upper_corner_text) const;
+
     Point<dim>                        lower_corner;
     Point<dim>                        upper_corner;
     std::array<unsigned int, dim>     n_cells;
