@@ -48,6 +48,13 @@ namespace mpm
   }
 
 
+  std::string
+  face_name(const unsigned int face)
+  {
+    return face_names[face];
+  }
+
+
   template <int dim>
   void
   GridParameters<dim>::declare_parameters(ParameterHandler &prm)

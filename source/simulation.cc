@@ -792,14 +792,12 @@ namespace mpm
   {
     if (integrator_parameters.transfer != Transfer::apic)
       return;
-    static const char *face_names[] = {
-      "x min", "x max", "y min", "y max", "z min", "z max"};
     std::string rough_face;
     for (unsigned int f = 0; f < 2 * dim && rough_face.empty(); ++f)
       if (grid_parameters.boundary[f] == BoundaryType::fixed ||
           grid_parameters.boundary[f] == BoundaryType::friction)
         rough_face =
-          std::string(face_names[f]) + "' = " +
+          face_name(f) + "' = " +
           (grid_parameters.boundary[f] == BoundaryType::fixed ? "fixed"
                                                               : "friction");
     if (rough_face.empty())

@@ -18,6 +18,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace dealii::Particles
@@ -39,6 +40,12 @@ namespace mpm
     friction, ///< Coulomb contact: no penetration, free separation
     absorbing ///< viscous dashpots that let waves leave (Lysmer-Kuhlemeyer)
   };
+
+
+  /// The name of grid face @p face (x min, x max, y min, ...), as in its
+  /// 'Grid/boundary ...' entry.
+  std::string
+  face_name(const unsigned int face);
 
 
   /// A node on an absorbing face: the face (x min, x max, y min, ...) and

@@ -121,13 +121,6 @@ namespace mpm
       meter.add(impulse);
     }
 
-    /// The name of the wall's subsection, for messages.
-    std::string
-    name() const
-    {
-      return "Boundary conditions/Rigid wall " + std::to_string(prm.index);
-    }
-
     /// The wall's speed: the time step must let no point cross it in a
     /// step (TimeIntegrator::stable_time_step).
     double
