@@ -101,13 +101,18 @@ namespace mpm
    *
    * Small-mass guard: a node that only the far corner of a point's stencil
    * reaches has a mass that tends to zero while its force does not, so its
-   * velocity can become huge. Particle velocities and positions are safe,
-   * because they see that node through weight/mass <= 1/m_p; the velocity
-   * gradient is not, because the gradient weight does not vanish. Nodes
-   * lighter than 'small mass fraction' times the smallest point mass are
-   * therefore left out of L (their velocity is replaced by the point's own
-   * grid velocity, which keeps L zero for a rigid translation), while they
-   * keep their full momentum update, so momentum is conserved exactly.
+   * force-updated velocity can become huge. Particle velocities and
+   * positions are safe, because they see that node through weight/mass <=
+   * 1/m_p; USL's strain rate, taken from the force-updated velocities, is
+   * not when the gradient weight does not vanish with the weight (the
+   * linear basis). There, nodes lighter than 'small mass fraction' times
+   * the smallest point mass are left out of L (their velocity replaced by
+   * the point's own grid velocity, which keeps L zero for a rigid
+   * translation), and the internal force leaves them out the same way
+   * (light_node_gradients): the force stays the adjoint of the strain
+   * rate, so its work is the stress power, and momentum is conserved
+   * exactly. MUSL and USF take L from transferred velocities (means of
+   * the points' velocities) and need no guard.
    */
   template <int dim>
   class TimeIntegrator
@@ -243,6 +248,21 @@ namespace mpm
     std::array<double, 2>
     external_work() const;
 
+    /**
+     * The two sides of the identity that makes the internal forces' work
+     * the stress power: for nodal velocities @p w (a function of a node's
+     * lattice coordinates, the same for every field),
+     * {sum_I f_I . w_I, sum_p V_p sigma_p : L_p(w)}, with the forces and
+     * the strain rate as this scene's step computes them from the points'
+     * current stresses and positions. Their sum vanishes when the two
+     * operators are adjoint. Gravity and loads must be off (they add to
+     * f). Summed over the ranks (collective).
+     */
+    std::array<double, 2>
+    internal_work_and_stress_power(
+      const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
+        &w);
+
   private:
     // Components of the interleaved nodal vectors.
     static constexpr unsigned int mass = 0, momentum = 1, force = 1 + dim;
@@ -317,7 +337,14 @@ namespace mpm
     void
     scatter_to_grid(const Basis &basis,
                     const bool   mass_and_momentum,
-                    const bool   forces);
+                    const bool   forces,
+                    const double light_mass = 0.);
+    /// The step's nodal masses, momenta (velocities in v_old) and forces,
+    /// with USL's small-mass guard on the forces' side too (see
+    /// light_node_gradients).
+    template <typename Basis>
+    void
+    scatter_masses_then_forces(const Basis &basis);
     /// The virtual stress method: the fluid's pressure on the wetted
     /// surface, as nodal forces added to the scattered ones.
     template <typename Basis>
@@ -420,14 +447,43 @@ namespace mpm
     void
     close_external_work(const double dt);
     /// L at a point from the nodal velocities in @p slot of the nodal
-    /// array @p u (the point's field, node stride @p stride; small-mass
-    /// guard).
+    /// array @p u (the point's field, node stride @p stride). Nodes of
+    /// mass <= @p light_mass are left out (the small-mass guard where the
+    /// velocities are force-updated, else only massless nodes).
     template <typename Stencil>
     Tensor<2, dim>
     velocity_gradient(const Stencil     &s,
                       const double      *u,
                       const unsigned int stride,
-                      const unsigned int slot) const;
+                      const unsigned int slot,
+                      const double       light_mass) const;
+    /// The mass at or below which a node is left out of the strain rate:
+    /// the small-mass guard where the strain rate reads force-updated
+    /// velocities (USL) through gradients that do not vanish with the
+    /// weights (the linear basis), else none. The transferred velocities
+    /// of MUSL and USF are mass-weighted means of the points' velocities,
+    /// and with a smooth basis a light node's velocity, growing as 1 /
+    /// phi, enters the strain rate with grad phi, which vanishes as
+    /// phi^(1/2) or faster.
+    template <typename Basis>
+    double
+    strain_rate_light_mass() const
+    {
+      return prm.scheme == UpdateScheme::USL &&
+                 !Basis::gradient_vanishes_with_weight
+               ? min_nodal_mass
+               : 0.;
+    }
+    /// The stress term's gradients at a point adjoint to the strain
+    /// rate's small-mass guard (see there), in @p spread; false, and
+    /// @p spread untouched, if no node of the stencil is light.
+    template <typename Stencil, std::size_t n_nodes>
+    bool
+    light_node_gradients(const Stencil                       &s,
+                         const double                        *u,
+                         const unsigned int                   stride,
+                         const double                         light_mass,
+                         std::array<Tensor<1, dim>, n_nodes> &spread) const;
     /// Is the node (its entry in a nodal array) lighter than the
     /// small-mass threshold? Its velocity is then left out of the
     /// gradients (velocity_gradient, discount_light_node_increments).
