@@ -5,12 +5,15 @@
 #include <mpm/parameters.h>
 #include <mpm/simulation.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 namespace
@@ -218,6 +221,13 @@ namespace
       return sections.count(path) > 0;
     }
 
+    /// The written parameters ("Simulation/end time") and their lines.
+    const std::map<std::string, unsigned int> &
+    written_entries() const
+    {
+      return entries;
+    }
+
     /// The written sections whose path starts with @p prefix.
     std::vector<std::string>
     sections_starting_with(const std::string &prefix) const
@@ -297,6 +307,100 @@ namespace
   }
 
 
+  /// The paths ("Simulation/end time") of every parameter @p prm declares,
+  /// read off its own listing.
+  std::set<std::string>
+  declared_paths(const ParameterHandler &prm)
+  {
+    std::ostringstream listing;
+    prm.print_parameters(listing, ParameterHandler::ShortPRM);
+    std::istringstream       in(listing.str());
+    std::set<std::string>    paths;
+    std::vector<std::string> stack;
+    std::string              line;
+    while (std::getline(in, line))
+      {
+        line = Utilities::trim(line);
+        if (line.rfind("subsection ", 0) == 0)
+          stack.push_back(Utilities::trim(line.substr(11)));
+        else if (line == "end" && !stack.empty())
+          stack.pop_back();
+        else if (line.rfind("set ", 0) == 0)
+          {
+            std::string p;
+            for (const auto &section : stack)
+              p += section + "/";
+            paths.insert(p +
+                         Utilities::trim(line.substr(4, line.find('=') - 4)));
+          }
+      }
+    return paths;
+  }
+
+
+  /// Levenshtein distance, case-blind: how far a misspelt path is from a
+  /// declared one.
+  unsigned int
+  edit_distance(const std::string &a, const std::string &b)
+  {
+    std::vector<unsigned int> row(b.size() + 1);
+    for (unsigned int j = 0; j <= b.size(); ++j)
+      row[j] = j;
+    for (unsigned int i = 1; i <= a.size(); ++i)
+      {
+        unsigned int diagonal = row[0];
+        row[0]                = i;
+        for (unsigned int j = 1; j <= b.size(); ++j)
+          {
+            const unsigned int up = row[j];
+            const bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
+            row[j]          = std::min(
+              {row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0u : 1u)});
+            diagonal = up;
+          }
+      }
+    return row[b.size()];
+  }
+
+
+  /**
+   * A parameter the scene writes (in the file or with -s) that the program
+   * does not declare is an input error naming it and the closest declared
+   * ones, before deal.II would reject it with its own words (which name a
+   * line, or 'not yet declared', but not what was meant).
+   */
+  void
+  check_parameter_names(const ParameterHandler &prm,
+                        const SceneText        &text,
+                        const CommandLine      &c)
+  {
+    const std::set<std::string> declared = declared_paths(prm);
+    auto check = [&](const std::string &path, const std::string &where) {
+      if (declared.count(path) > 0)
+        return;
+      std::vector<std::pair<unsigned int, std::string>> near;
+      for (const auto &d : declared)
+        near.emplace_back(edit_distance(path, d), d);
+      std::sort(near.begin(), near.end());
+      std::string        suggestions;
+      const unsigned int reach = std::max<unsigned int>(3, path.size() / 4);
+      for (unsigned int i = 0; i < 3 && i < near.size(); ++i)
+        if (near[i].first <= reach)
+          suggestions +=
+            (suggestions.empty() ? "'" : ", '") + near[i].second + "'";
+      throw mpm::InputError(
+        "parameter '" + path + "' (" + where + ") is not declared" +
+        (suggestions.empty() ? std::string()
+                             : "; did you mean " + suggestions + "?") +
+        " ('dealii-mpm --print-parameters' lists them all)");
+    };
+    for (const auto &[path, line] : text.written_entries())
+      check(path, "line " + std::to_string(line) + " of " + c.scene);
+    for (const auto &[path, value] : c.overrides)
+      check(path, "option -s");
+  }
+
+
   /**
    * Read the scene in two passes: the first learns the number of bodies
    * and of rigid walls (and tolerates everything it does not know yet), the
@@ -330,6 +434,7 @@ namespace
                             n_walls,
                             "Boundary conditions/number of rigid walls");
     mpm::declare_scene_parameters(prm, n_bodies, n_walls);
+    check_parameter_names(prm, text, c);
     prm.parse_input(c.scene);
     for (const auto &[path, value] : c.overrides)
       apply_override(prm, path, value);

@@ -104,8 +104,12 @@ mpm_test(bad_unknown_material PRM ${base} EXIT 1
   ERROR "input error: .*granite.*(linear elastic|pattern)")
 mpm_test(bad_vector_length PRM ${base} EXIT 1 ARGS -s "Simulation/gravity=0, -9.81, 0"
   ERROR "parameter 'Simulation/gravity' = '0, -9.81, 0': expects 2 comma-separated values")
+#    A misspelt parameter is named with the closest declared ones, from
+#    -s or from the file (with its line), before deal.II's own words.
 mpm_test(bad_unknown_parameter PRM ${base} EXIT 1 ARGS -s "Grid/cellz=3"
-  ERROR "input error: .*cellz")
+  ERROR "input error: parameter 'Grid/cellz' .option -s. is not declared; did you mean 'Grid/cells'")
+mpm_test(bad_misspelt_parameter PRM misspelt.prm EXIT 1
+  ERROR "input error: parameter 'Simulation/end tme' .line 4 of [^)]*misspelt.prm. is not declared; did you mean 'Simulation/end time'")
 mpm_test(bad_malformed_file PRM malformed.prm EXIT 1
   ERROR "input error: .*[Ll]ine <?4>?")
 mpm_test(bad_missing_file PRM does_not_exist.prm EXIT 1
