@@ -162,56 +162,12 @@ namespace
   public:
     SceneText(const std::string &scene, const CommandLine &c)
     {
-      namespace fs = std::filesystem;
-      if (!fs::exists(scene))
-        throw mpm::InputError("scene file '" + scene + "' does not exist");
-      if (fs::is_directory(scene))
-        throw mpm::InputError("scene '" + scene +
-                              "' is a directory, not a scene file");
-      std::ifstream            in(scene);
-      std::string              line, logical;
-      unsigned int             number = 0, first_of_logical = 0;
       std::vector<std::string> stack;
-      bool                     anything = false;
-      while (std::getline(in, line))
-        {
-          ++number;
-          line = Utilities::trim(line.substr(0, line.find('#')));
-          if (logical.empty())
-            first_of_logical = number;
-          // deal.II joins a line ending in a backslash with the next.
-          if (!line.empty() && line.back() == '\\')
-            {
-              logical += line.substr(0, line.size() - 1) + " ";
-              continue;
-            }
-          line = Utilities::trim(logical + line);
-          logical.clear();
-          if (line.empty())
-            continue;
-          anything = true;
-          if (line.rfind("subsection ", 0) == 0)
-            {
-              stack.push_back(Utilities::trim(line.substr(11)));
-              note(sections, path(stack, ""), first_of_logical, "section");
-            }
-          else if (line == "end")
-            {
-              if (!stack.empty())
-                stack.pop_back();
-            }
-          else if (line.rfind("set ", 0) == 0)
-            note(entries,
-                 path(stack,
-                      Utilities::trim(line.substr(4, line.find('=') - 4))),
-                 first_of_logical,
-                 "parameter");
-        }
-      if (!anything)
+      if (!read(scene, stack, 0))
         throw mpm::InputError("scene file '" + scene +
                               "' is empty: nothing to simulate");
       for (const auto &[path, value] : c.overrides)
-        sections.emplace(path.substr(0, path.rfind('/')), 0);
+        sections.emplace(path.substr(0, path.rfind('/')), "option -s");
     }
 
     /// Is section @p path ("Bodies/Body 1") written?
@@ -221,8 +177,8 @@ namespace
       return sections.count(path) > 0;
     }
 
-    /// The written parameters ("Simulation/end time") and their lines.
-    const std::map<std::string, unsigned int> &
+    /// The written parameters ("Simulation/end time") and where.
+    const std::map<std::string, std::string> &
     written_entries() const
     {
       return entries;
@@ -240,6 +196,75 @@ namespace
     }
 
   private:
+    /// Note the sections and parameters of @p file, opened in the sections
+    /// of @p stack; follows 'include' as deal.II does (the file named
+    /// relative to the directory the program runs in). Was anything
+    /// written?
+    bool
+    read(const std::string        &file,
+         std::vector<std::string> &stack,
+         const unsigned int        depth)
+    {
+      namespace fs = std::filesystem;
+      if (!fs::exists(file))
+        throw mpm::InputError("scene file '" + file + "' does not exist" +
+                              (depth > 0 ? " (an 'include' names it; it is "
+                                           "read relative to the directory "
+                                           "the program runs in)"
+                                         : ""));
+      if (fs::is_directory(file))
+        throw mpm::InputError("scene '" + file +
+                              "' is a directory, not a scene file");
+      if (depth > 16)
+        throw mpm::InputError("scene file '" + file +
+                              "' is included more than 16 deep: does it "
+                              "include itself?");
+      std::ifstream in(file);
+      std::string   line, logical;
+      unsigned int  number = 0, first_of_logical = 0;
+      bool          anything = false;
+      while (std::getline(in, line))
+        {
+          ++number;
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (logical.empty())
+            first_of_logical = number;
+          // deal.II joins a line ending in a backslash with the next.
+          if (!line.empty() && line.back() == '\\')
+            {
+              logical += line.substr(0, line.size() - 1) + " ";
+              continue;
+            }
+          line = Utilities::trim(logical + line);
+          logical.clear();
+          if (line.empty())
+            continue;
+          anything = true;
+          const auto where =
+            "line " + std::to_string(first_of_logical) + " of " + file;
+          if (line.rfind("subsection ", 0) == 0)
+            {
+              stack.push_back(Utilities::trim(line.substr(11)));
+              note(sections, path(stack, ""), where, "section");
+            }
+          else if (line == "end")
+            {
+              if (!stack.empty())
+                stack.pop_back();
+            }
+          else if (line.rfind("set ", 0) == 0)
+            note(entries,
+                 path(stack,
+                      Utilities::trim(line.substr(4, line.find('=') - 4))),
+                 where,
+                 "parameter");
+          else if (line.rfind("include ", 0) == 0 ||
+                   line.rfind("INCLUDE ", 0) == 0)
+            read(Utilities::trim(line.substr(8)), stack, depth + 1);
+        }
+      return anything;
+    }
+
     static std::string
     path(const std::vector<std::string> &stack, const std::string &name)
     {
@@ -250,22 +275,22 @@ namespace
     }
 
     static void
-    note(std::map<std::string, unsigned int> &seen,
-         const std::string                   &path,
-         const unsigned int                   line,
-         const std::string                   &kind)
+    note(std::map<std::string, std::string> &seen,
+         const std::string                  &path,
+         const std::string                  &where,
+         const std::string                  &kind)
     {
-      const auto [where, fresh] = seen.emplace(path, line);
+      const auto [first, fresh] = seen.emplace(path, where);
       if (!fresh)
-        throw mpm::InputError(
-          kind + " '" + path + "' is written twice (lines " +
-          std::to_string(where->second) + " and " + std::to_string(line) +
-          (kind == "parameter" ? "): the second would silently win"
-                               : "): their entries would silently merge") +
-          "; write it once");
+        throw mpm::InputError(kind + " '" + path + "' is written twice (" +
+                              first->second + " and " + where +
+                              (kind == "parameter"
+                                 ? "): the second would silently win"
+                                 : "): their entries would silently merge") +
+                              "; write it once");
     }
 
-    std::map<std::string, unsigned int> sections, entries;
+    std::map<std::string, std::string> sections, entries;
   };
 
 
@@ -394,8 +419,8 @@ namespace
                              : "; did you mean " + suggestions + "?") +
         " ('dealii-mpm --print-parameters' lists them all)");
     };
-    for (const auto &[path, line] : text.written_entries())
-      check(path, "line " + std::to_string(line) + " of " + c.scene);
+    for (const auto &[path, where] : text.written_entries())
+      check(path, where);
     for (const auto &[path, value] : c.overrides)
       check(path, "option -s");
   }

@@ -874,9 +874,14 @@ mpm_test(bad_scene_directory PRM meshes EXIT 1
 mpm_test(bad_scene_empty PRM empty.prm EXIT 1
   ERROR "input error: scene file '.*empty.prm' is empty: nothing to simulate")
 mpm_test(bad_duplicate_parameter PRM duplicate_parameter.prm EXIT 1
-  ERROR "parameter 'Simulation/end time' is written twice \\(lines 4 and 5\\): the second would silently win")
+  ERROR "parameter 'Simulation/end time' is written twice \\(line 4 of [^ ]*duplicate_parameter.prm and line 5 of [^ ]*duplicate_parameter.prm\\): the second would silently win")
 mpm_test(bad_duplicate_section PRM duplicate_section.prm EXIT 1
-  ERROR "section 'Simulation' is written twice \\(lines 2 and 5\\)")
+  ERROR "section 'Simulation' is written twice \\(line 2 of [^ ]*duplicate_section.prm and line 5 of [^ ]*duplicate_section.prm\\)")
+#    'include' works as deal.II reads it (relative to the directory the
+#    program runs in); the scene's checks follow it, and a file it names
+#    that is not there is said so, not "no section 'Bodies/Body 0'".
+mpm_test(bad_include_missing PRM include_missing.prm EXIT 1
+  ERROR "input error: scene file 'no_such_body.prm' does not exist .an 'include' names it; it is read relative to the directory the program runs in.")
 mpm_test(bad_missing_body PRM two_disks.prm EXIT 1 ARGS -s "Bodies/number of bodies=3"
   ERROR "parameter 'Bodies/number of bodies' = '3': but the scene has no section 'Bodies/Body 2'")
 mpm_test(bad_constant_pi PRM two_disks.prm EXIT 1 ARGS -s "Simulation/constants=a=1, pi=3"
