@@ -892,6 +892,10 @@ namespace mpm
         f->set_time(t);
     // Compiled once for one field and once for several, so that a scene
     // without contact carries nothing of it.
+    // The guard's gradients (light_node_gradients), filled only where a
+    // stencil has a light node: scratch kept out of the point loop, which
+    // would otherwise zero it for every point.
+    std::array<Tensor<1, dim>, Basis::n_nodes> spread;
     auto scatter = [&](auto several_fields) {
       constexpr bool multi_field = decltype(several_fields)::value;
       for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
@@ -958,8 +962,7 @@ namespace mpm
             // Internal force with the current volume and Cauchy stress.
             const SymmetricTensor<2, dim> Vsigma =
               q[l.volume] * Fields::symmetric<dim>(q + l.stress);
-            std::array<Tensor<1, dim>, Basis::n_nodes> spread;
-            const bool                                 guarded =
+            const bool guarded =
               light_mass > 0 &&
               light_node_gradients(s,
                                    velocities +
@@ -1674,21 +1677,23 @@ namespace mpm
     const double                         light_mass,
     std::array<Tensor<1, dim>, n_nodes> &spread) const
   {
-    Tensor<1, dim> light_gradients;
-    bool           any_light = false;
+    std::array<bool, n_nodes> light;
+    Tensor<1, dim>            light_gradients;
+    bool                      any_light = false;
     for (unsigned int v = 0; v < n_nodes; ++v)
-      if (u[stride * s.nodes[v] + node_mass] <= light_mass)
-        {
-          light_gradients += s.gradients[v];
-          any_light = true;
-        }
+      {
+        light[v] = u[stride * s.nodes[v] + node_mass] <= light_mass;
+        if (light[v])
+          {
+            light_gradients += s.gradients[v];
+            any_light = true;
+          }
+      }
     if (!any_light)
       return false;
     for (unsigned int v = 0; v < n_nodes; ++v)
-      spread[v] =
-        (u[stride * s.nodes[v] + node_mass] <= light_mass ? Tensor<1, dim>()
-                                                          : s.gradients[v]) +
-        s.weights[v] * light_gradients;
+      spread[v] = s.weights[v] * light_gradients +
+                  (light[v] ? Tensor<1, dim>() : s.gradients[v]);
     return true;
   }
 
