@@ -7,9 +7,11 @@ namespace mpm
 {
   template <int dim>
   EnergyGuard<dim>::EnergyGuard(const double               bound,
+                                const bool                 with_residual,
                                 const MaterialPoints<dim> &points,
                                 MPI_Comm                   comm)
     : bound(bound)
+    , with_residual(with_residual)
     , points(points)
     , comm(comm)
   {
@@ -17,14 +19,13 @@ namespace mpm
 
 
   template <int dim>
-  void
+  std::array<double, 2>
   EnergyGuard<dim>::check(const Statistics<dim> &s,
                           const double           work,
                           const double           absolute_work,
+                          const double           stress_work,
                           const double           t)
   {
-    if (bound == 0)
-      return;
     const double gravity =
       s.gravitational_energy - s.rigid_gravitational_energy;
     const double energy =
@@ -34,30 +35,55 @@ namespace mpm
         initial_energy     = energy;
         initial_motion     = energy - gravity;
         initial_gravity    = gravity;
+        initial_strain     = s.strain_energy;
         have_initial_state = true;
-        return;
       }
     largest_release     = std::max(largest_release, initial_gravity - gravity);
     const double put_in = initial_motion + largest_release + absolute_work;
     const double gain   = energy - initial_energy - work;
+    const double residual =
+      with_residual ? gain - s.strain_energy + initial_strain + stress_work : 0.;
+    if (bound == 0)
+      return {{put_in, residual}};
     // Round-off of the sums (the gravitational energy is measured from the
     // origin, and can be far larger than any change of it).
     const double noise =
       1e-10 * (std::abs(initial_gravity) + std::abs(initial_motion));
+    const auto fraction = [&](const double e) {
+      return put_in > 0 ? e / put_in : 0.;
+    };
     if (!(gain <= bound * put_in + noise))
       {
         std::ostringstream msg;
         msg << "t = " << t << ": the energy of the bodies grew by " << gain
             << " J beyond the work done on them (energy " << initial_energy
             << " -> " << energy << " J, work " << work << " J), "
-            << (put_in > 0 ? gain / put_in : 0.) << " of the energy put in ("
-            << put_in
+            << fraction(gain) << " of the energy put in (" << put_in
             << " J), more than 'Simulation/energy growth bound' = " << bound
             << "; the run is unstable (the fastest point: " << fastest_point()
             << "; try a smaller CFL number, a FLIP fraction below 1, or "
                "MUSL)";
         throw RunError(msg.str());
       }
+    if (!(residual <= bound * put_in + noise))
+      {
+        std::ostringstream msg;
+        msg << "t = " << t << ": the energy residual is " << residual
+            << " J (the bodies' kinetic and gravitational energy plus the "
+               "work their stresses absorbed, "
+            << stress_work
+            << " J of it, beyond their initial energy and the work done on "
+               "them), "
+            << fraction(residual) << " of the energy put in (" << put_in
+            << " J), more than 'Simulation/energy growth bound' = " << bound
+            << ": the numerics create energy, which plasticity hides in the "
+               "total energy (the fastest point: "
+            << fastest_point()
+            << "; try a smaller CFL number, a FLIP fraction below 1, or "
+               "MUSL)";
+        throw RunError(msg.str());
+      }
+    return {{put_in, residual}};
   }
 
 
@@ -100,6 +126,7 @@ namespace mpm
     state.values["energy_guard_initial_energy"]     = initial_energy;
     state.values["energy_guard_initial_motion"]     = initial_motion;
     state.values["energy_guard_initial_gravity"]    = initial_gravity;
+    state.values["energy_guard_initial_strain"]     = initial_strain;
     state.values["energy_guard_largest_release"]    = largest_release;
   }
 
@@ -112,6 +139,8 @@ namespace mpm
     initial_energy     = state.get("energy_guard_initial_energy");
     initial_motion     = state.get("energy_guard_initial_motion");
     initial_gravity    = state.get("energy_guard_initial_gravity");
+    if (with_residual)
+      initial_strain = state.get("energy_guard_initial_strain");
     largest_release    = state.get("energy_guard_largest_release");
   }
 

@@ -322,7 +322,10 @@ namespace mpm
     verification = std::make_unique<Verification<dim>>(
       verification_parameters, *points, integrator_parameters.gravity, comm);
     energy_guard = std::make_unique<EnergyGuard<dim>>(
-      integrator_parameters.energy_growth_bound, *points, comm);
+      integrator_parameters.energy_growth_bound,
+      integrator_parameters.energy_residual,
+      *points,
+      comm);
     if (resume != nullptr)
       {
         integrator->restore_state(*resume);
@@ -344,6 +347,8 @@ namespace mpm
     if (integrator_parameters.macro_time_step > 0)
       for (const std::string c : {"macro_steps", "macro_mismatch"})
         columns.push_back(c);
+    if (integrator_parameters.energy_residual)
+      columns.push_back("energy_residual");
     if (output_parameters.body_extents)
       {
         extents =
@@ -634,7 +639,10 @@ namespace mpm
     // output.
     stop_if_not_finite(s, extra);
     const auto [work, absolute_work] = integrator->external_work();
-    energy_guard->check(s, work, absolute_work, integrator->time());
+    const auto [put_in, residual] = energy_guard->check(
+      s, work, absolute_work, integrator->stress_work(), integrator->time());
+    if (integrator_parameters.energy_residual)
+      extra.push_back(put_in > 0 ? residual / put_in : 0.);
     // A body without points (or without a deposit) has no extents: the
     // writer leaves their fields empty.
     if (extents)

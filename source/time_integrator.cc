@@ -185,6 +185,18 @@ namespace mpm
       "energy put in (initial motion and strain, gravitational energy "
       "released, work of loads, walls, regions and the virtual fluid); "
       "checked at output times; >= 0, 0: off.");
+    prm.declare_entry(
+      "energy residual",
+      "false",
+      Patterns::Bool(),
+      "Add the column energy_residual to statistics.csv: the energy "
+      "balance of the bodies with the work their stresses absorbed (the "
+      "stress power, summed over the steps) in place of their strain "
+      "energy, over the energy put in. Where plasticity dissipates, the "
+      "total energy can hide energy the numerics made; this balance "
+      "cannot (> 0: made, < 0: lost to the transfer, walls, friction or "
+      "damping). The energy growth bound then applies to it too. Costs "
+      "two passes over the points per step.");
     prm.declare_entry("small mass fraction",
                       "0.25",
                       Patterns::Anything(),
@@ -248,6 +260,7 @@ namespace mpm
     f_bar = prm.get_bool("F-bar");
     energy_growth_bound =
       Parse::bounded_double(prm, s, "energy growth bound", 0, 1e300);
+    energy_residual = prm.get_bool("energy residual");
     out_of_grid = prm.get("out of grid") == "stop" ? OutOfGridPolicy::stop
                                                    : OutOfGridPolicy::remove;
     macro_time_step =
@@ -1910,11 +1923,17 @@ namespace mpm
   {
     if (prm.f_bar)
       average_volume_change_over_cells(dt);
-    TimerOutput::Scope scope(timer, "stress");
-    for (unsigned int b = 0; b < points.bodies().size(); ++b)
-      if (!points.bodies()[b].rigid_velocity) // a rigid body has no stress
-        points.bodies()[b].material->update_stresses(
-          points.handler(), points.layout(), b, dt, comm);
+    if (prm.energy_residual)
+      add_stress_power(dt, true);
+    {
+      TimerOutput::Scope scope(timer, "stress");
+      for (unsigned int b = 0; b < points.bodies().size(); ++b)
+        if (!points.bodies()[b].rigid_velocity) // a rigid body has no stress
+          points.bodies()[b].material->update_stresses(
+            points.handler(), points.layout(), b, dt, comm);
+    }
+    if (prm.energy_residual)
+      add_stress_power(dt, false);
     if (points.layout().macro_step != FieldLayout::absent)
       accumulate_macro_increment(dt);
   }
@@ -2018,6 +2037,48 @@ namespace mpm
   }
 
 
+  /**
+   * The work the points' stresses absorbed over the step, V sigma : L dt
+   * with the strain rate their update used, by the trapezoidal rule over
+   * the update: half at the stress before (and the volume the step started
+   * from), half after. Elastic, its sum is the change of strain energy to
+   * the order of the rule; plastic, it also holds what plasticity
+   * dissipated (see EnergyGuard: the energy residual).
+   */
+  template <int dim>
+  void
+  TimeIntegrator<dim>::add_stress_power(const double dt, const bool before)
+  {
+    TimerOutput::Scope scope(timer, "energy residual");
+    const FieldLayout &l     = points.layout();
+    double             power = 0;
+    for (const auto &p : points.handler())
+      {
+        const double        *q = p.get_properties().data();
+        const Tensor<2, dim> L = Fields::tensor<dim>(q + l.velocity_gradient);
+        double               V = q[l.volume];
+        if (before)
+          {
+            // The volume the step started from: V = V_n det(I + dt L).
+            Tensor<2, dim> dF = dt * L;
+            for (unsigned int d = 0; d < dim; ++d)
+              dF[d][d] += 1.;
+            V /= determinant(dF);
+          }
+        power += V * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
+      }
+    absorbed_work += 0.5 * dt * power;
+  }
+
+
+  template <int dim>
+  double
+  TimeIntegrator<dim>::stress_work() const
+  {
+    return Utilities::MPI::sum(absorbed_work, comm);
+  }
+
+
   template <int dim>
   std::array<double, 2>
   TimeIntegrator<dim>::external_work() const
@@ -2040,6 +2101,7 @@ namespace mpm
     state.values["last_dt"]        = last_dt;
     state.values["steps"]          = n_steps;
     state.values["removed_points"] = n_removed;
+    state.values["stress_work"]    = stress_work();
     if (prm.macro_time_step > 0)
       {
         state.values["macro_steps"]          = n_macro_steps;
@@ -2060,6 +2122,8 @@ namespace mpm
     const bool first = Utilities::MPI::this_mpi_process(comm) == 0;
     work             = first ? state.get("external_work") : 0.;
     absolute_work    = first ? state.get("absolute_work") : 0.;
+    if (prm.energy_residual)
+      absorbed_work = first ? state.get("stress_work") : 0.;
     if (prm.macro_time_step > 0)
       {
         n_macro_steps        = state.get("macro_steps");

@@ -926,6 +926,12 @@ add_test(NAME checkpoint_restart_glen_slab
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
     --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_SOURCE_DIR}/benchmarks/glaciology/glen_slab.prm
     --end-time 0.6)
+#     ... with the energy residual, whose sums (the stresses' work, the
+#     initial strain energy) the checkpoint carries.
+add_test(NAME checkpoint_restart_glen_slab_residual
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint_restart.py
+    --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_SOURCE_DIR}/benchmarks/glaciology/glen_slab.prm
+    --end-time 0.6 -s "Simulation/energy residual=true")
 #     ... and on 2 ranks, where the grid is partitioned by work: deal.II
 #     loads a checkpoint with a uniform partition, and the restart puts
 #     the work partition back (the nodal sums at the rank boundary ran in
@@ -1011,6 +1017,43 @@ mpm_test(energy_guard PRM two_disks.prm EXIT 2
        -s "Simulation/energy growth bound=0.005"
   ERROR "run stopped: t = 2.25: the energy of the bodies grew by [0-9.]+ J beyond the work done on them .energy 2.6 -> [0-9.]+ J, work 0 J., 0.005[0-9]+ of the energy put in .2.6 J., more than 'Simulation/energy growth bound' = 0.005. the run is unstable .the fastest point: material point [0-9]+ of body [01] at .*Output up to t = 2 "
   FILES particles_00008.pvtu)
+#     Issue 30, the energy residual ('Simulation/energy residual'): the
+#     balance with the work the stresses absorbed in place of the strain
+#     energy. Elastic, it is the energy balance (USF +0.94 % against
+#     +1.10 %, MUSL -0.39 % against -0.09 %, USL -9.1 % against -8.6 %);
+#     with von Mises plasticity (40 Pa) the total falls by 92 % and hides
+#     everything, while the residual still shows USF's +1.2 % (MUSL -1.0 %,
+#     USL -10.6 %).
+add_test(NAME energy_residual
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/verification/energy_residual.py
+    --exe $<TARGET_FILE:dealii-mpm> --check)
+#     ... so the guard sees it: under a bound of 0.005 the plastic USF run
+#     runs to the end on the total energy, and stops at t = 1.75 on the
+#     residual (0.0067 of the energy put in).
+set(plastic_disks
+  -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0"
+  -s "Simulation/energy growth bound=0.005" -s "Simulation/end time=2.5")
+foreach(b 0 1)
+  list(APPEND plastic_disks -s "Bodies/Body ${b}/material=von Mises"
+    -s "Bodies/Body ${b}/von Mises/Young's modulus=1000"
+    -s "Bodies/Body ${b}/von Mises/Poisson's ratio=0.3"
+    -s "Bodies/Body ${b}/von Mises/yield stress=40")
+endforeach()
+mpm_test(energy_guard_plastic_total PRM two_disks.prm ARGS ${plastic_disks}
+  FILES particles_00010.pvtu)
+mpm_test(energy_guard_plastic_residual PRM two_disks.prm EXIT 2
+  ARGS ${plastic_disks} -s "Simulation/energy residual=true"
+  ERROR "run stopped: t = 1.75: the energy residual is 0.017[0-9]+ J .the bodies' kinetic and gravitational energy plus the work their stresses absorbed, 1.11[0-9]+ J of it, beyond their initial energy and the work done on them., 0.0067[0-9]+ of the energy put in .2.6 J., more than 'Simulation/energy growth bound' = 0.005: the numerics create energy, which plasticity hides in the total energy .the fastest point: material point [0-9]+ of body [01] at .*Output up to t = 1.5 "
+  FILES particles_00006.pvtu)
+#     Asking for the residual changes no number of the run (the other
+#     columns are two_disks_usf's, bit for bit), on 1 and 2 ranks.
+mpm_test(two_disks_usf_residual PRM two_disks.prm
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08"
+       -s "Simulation/energy residual=true")
+mpm_test(two_disks_usf_residual_mpi2 PRM two_disks.prm NP 2
+  REFERENCE two_disks_usf_residual.output RELTOL 1e-7
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08"
+       -s "Simulation/energy residual=true")
 #     The CFL numbers allowed are those stable with every basis on the
 #     sweep of benchmarks/verification/cfl_range.py: up to 0.8 (the linear
 #     basis and GIMP fail at 0.9, the B-splines hold at 1).

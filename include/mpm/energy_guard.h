@@ -29,7 +29,21 @@ namespace mpm
    *             + the most gravitational energy released so far
    *             + the work done so far, counted positive both ways,
    *
-   * naming the fastest point (where a blow-up shows first). The balance is
+   * naming the fastest point (where a blow-up shows first).
+   *
+   * Plasticity can hide energy the numerics made: what it dissipates
+   * offsets a gain. The energy residual ('Simulation/energy residual')
+   * takes the work the stresses absorbed, summed step by step
+   * (TimeIntegrator::stress_work), in place of the change of strain
+   * energy:
+   *
+   *   R(t) = E(t) - Psi(t) + Psi(0) + W_sigma(t) - E(0) - W(t),
+   *
+   * which plasticity cannot offset (elastic, W_sigma = Psi(t) - Psi(0) to
+   * the order of its quadrature). Only the transfer, walls, friction,
+   * damping and absorbing faces lower it. It is held to the same bound.
+   *
+   * The balance is
    * checked at output times, where the statistics are summed anyway; the
    * J guard and the non-finite checks catch faster blow-ups every step.
    * Rigid bodies are boundary conditions: their own energy is left out.
@@ -39,19 +53,26 @@ namespace mpm
   {
   public:
     /// @p bound: allowed gain over E_in; 0 switches the guard off.
+    /// @p with_residual: the energy residual is asked for.
     EnergyGuard(const double               bound,
+                const bool                 with_residual,
                 const MaterialPoints<dim> &points,
                 MPI_Comm                   comm);
 
     /**
      * Check the balance at time @p t with the statistics @p s and the
      * external work @p work (and its absolute sum @p absolute_work) done
-     * since the start; collective. Throws RunError with a diagnosis.
+     * since the start; collective. With the energy residual, also the
+     * balance in which the work the stresses absorbed, @p stress_work
+     * (TimeIntegrator::stress_work()), replaces the change of strain
+     * energy. Throws RunError with a diagnosis. Returns E_in(t) and the
+     * energy residual (0 without it), also when the guard is off.
      */
-    void
+    std::array<double, 2>
     check(const Statistics<dim> &s,
           const double           work,
           const double           absolute_work,
+          const double           stress_work,
           const double           t);
 
     void
@@ -65,11 +86,13 @@ namespace mpm
     fastest_point() const;
 
     const double               bound;
+    const bool                 with_residual;
     const MaterialPoints<dim> &points;
     MPI_Comm                   comm;
     bool                       have_initial_state = false;
     double                     initial_energy     = 0;
     double                     initial_motion     = 0; ///< kinetic + strain
+    double                     initial_strain     = 0;
     double                     initial_gravity    = 0;
     double                     largest_release    = 0;
   };

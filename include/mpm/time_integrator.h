@@ -62,6 +62,7 @@ namespace mpm
     double          J_min, J_max; ///< run-health guard on V / V0
     bool            f_bar;        ///< volume change averaged over each cell
     double          energy_growth_bound; ///< run-health guard, 0: off
+    bool            energy_residual;     ///< the step's energy residual
     OutOfGridPolicy out_of_grid;
     /// Substepping (seed 003): the macro step Dt, 0: off.
     double macro_time_step;
@@ -263,6 +264,14 @@ namespace mpm
       const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
         &w);
 
+    /**
+     * The work the deformable bodies' stresses absorbed since the start
+     * (the stress power, summed over the steps; 'Simulation/energy
+     * residual', else 0), summed over the ranks (collective).
+     */
+    double
+    stress_work() const;
+
   private:
     // Components of the interleaved nodal vectors.
     static constexpr unsigned int mass = 0, momentum = 1, force = 1 + dim;
@@ -446,6 +455,10 @@ namespace mpm
     /// End the step's account of external work (see there).
     void
     close_external_work(const double dt);
+    /// Half of the step's stress power V sigma : L dt (see there), at the
+    /// stress before the update (@p before) or after it.
+    void
+    add_stress_power(const double dt, const bool before);
     /// L at a point from the nodal velocities in @p slot of the nodal
     /// array @p u (the point's field, node stride @p stride). Nodes of
     /// mass <= @p light_mass are left out (the small-mass guard where the
@@ -592,6 +605,8 @@ namespace mpm
     /// This rank's share of the external work: in this step, and since the
     /// start with its absolute sum; body forces' power in the last scatter.
     double step_work = 0, work = 0, absolute_work = 0, body_force_power = 0;
+    /// This rank's share of stress_work().
+    double absorbed_work = 0;
   };
 } // namespace mpm
 
