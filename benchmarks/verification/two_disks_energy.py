@@ -11,6 +11,14 @@ end, its relative change, and the largest momentum drift.
 
   two_disks_energy.py --exe build/dealii-mpm --scheme MUSL,USF
   two_disks_energy.py --exe ... --scheme MUSL --check --max-gain 0.01
+  two_disks_energy.py --exe ... -s Simulation/transfer=APIC --scheme
+      MUSL,USF,USL --check --no-gain --max-gain 0
+
+APIC loses energy on every basis and scheme (measured: -7.6 % to -45 %;
+the linear basis -7.6 % to -11 %); its light-node rule
+(discount_light_node_increments) is what keeps the linear basis from
+gaining: with 'Simulation/small mass fraction = 0' linear MUSL and USF
+invert after the disks meet (t = 2.02 and 2.73).
 
 The peers on the same scene (issue 30): Karamelo MUSL 2.591 J (-0.3 %),
 USF 2.631 J (+1.2 %); CB-Geo USF 2.629 J.
@@ -50,6 +58,9 @@ def main():
     parser.add_argument("--check", action="store_true")
     parser.add_argument("--max-gain", type=float, default=0.01,
                         help="bound on |E(3.5) / E(0) - 1|")
+    parser.add_argument("--no-gain", action="store_true",
+                        help="bound only the gain: E(3.5) / E(0) - 1 <= "
+                             "max-gain, any loss allowed")
     a = parser.parse_args()
     print("scheme,basis,initial,energy_at_1.7,energy_at_end,end_time,"
           "relative_change,momentum_drift")
@@ -62,7 +73,8 @@ def main():
             print("%s,%s,%.4f,%.4f,%.4f,%g,%+.4f,%.1e" % (
                 scheme, basis, e0, e_contact, e_end, t_end, change, momentum),
                 flush=True)
-            ok = ok and abs(change) <= a.max_gain and t_end >= 3.5 - 1e-9 \
+            moved = change if a.no_gain else abs(change)
+            ok = ok and moved <= a.max_gain and t_end >= 3.5 - 1e-9 \
                 and momentum < 1e-10
     if a.check and not ok:
         print("FAILED: a total energy at t = 3.5 moved by more than %g of the "
