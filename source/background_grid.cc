@@ -77,8 +77,7 @@ namespace mpm
     for (unsigned int f = 0; f < 6; ++f)
       prm.declare_entry(std::string("boundary ") + face_names[f],
                         "slip",
-                        Patterns::Selection(
-                          "free|fixed|slip|friction|absorbing"),
+                        Patterns::Selection(boundary_names.selection()),
                         "Velocity condition on this face of the box: free, "
                         "fixed (all components zero), slip (normal "
                         "component zero), friction (Coulomb contact with "
@@ -353,12 +352,8 @@ namespace mpm
     check_grid_fits_in_memory(prm.get("cells"));
     for (unsigned int f = 0; f < 2 * dim; ++f)
       {
-        const std::string b = prm.get(std::string("boundary ") + face_names[f]);
-        boundary[f]         = (b == "free"       ? BoundaryType::free
-                               : b == "fixed"    ? BoundaryType::fixed
-                               : b == "slip"     ? BoundaryType::slip
-                               : b == "friction" ? BoundaryType::friction
-                                                 : BoundaryType::absorbing);
+        boundary[f] = boundary_names.value(
+          prm.get(std::string("boundary ") + face_names[f]));
       }
     friction_coefficient =
       Parse::bounded_double(prm, "Grid", "friction coefficient", 0, 1e300);

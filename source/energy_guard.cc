@@ -42,7 +42,8 @@ namespace mpm
     const double put_in = initial_motion + largest_release + absolute_work;
     const double gain   = energy - initial_energy - work;
     const double residual =
-      with_residual ? gain - s.strain_energy + initial_strain + stress_work : 0.;
+      with_residual ? gain - s.strain_energy + initial_strain + stress_work
+                    : 0.;
     if (bound == 0)
       return {{put_in, residual}};
     // Round-off of the sums (the gravitational energy is measured from the
@@ -141,7 +142,7 @@ namespace mpm
     initial_gravity    = state.get("energy_guard_initial_gravity");
     if (with_residual)
       initial_strain = state.get("energy_guard_initial_strain");
-    largest_release    = state.get("energy_guard_largest_release");
+    largest_release = state.get("energy_guard_largest_release");
   }
 
 

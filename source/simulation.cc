@@ -639,7 +639,7 @@ namespace mpm
     // output.
     stop_if_not_finite(s, extra);
     const auto [work, absolute_work] = integrator->external_work();
-    const auto [put_in, residual] = energy_guard->check(
+    const auto [put_in, residual]    = energy_guard->check(
       s, work, absolute_work, integrator->stress_work(), integrator->time());
     if (integrator_parameters.energy_residual)
       extra.push_back(put_in > 0 ? residual / put_in : 0.);
@@ -835,8 +835,8 @@ namespace mpm
   {
     std::ostringstream s;
     const auto        &p = integrator_parameters;
-    s << "scheme " << p.scheme_name << ", basis " << p.basis_name
-      << ", transfer ";
+    s << "scheme " << update_scheme_names.name(p.scheme) << ", basis "
+      << basis_names.name(p.basis) << ", transfer ";
     if (p.transfer == Transfer::apic)
       s << "APIC";
     else

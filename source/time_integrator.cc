@@ -100,14 +100,13 @@ namespace mpm
       "FLIP only (doc/architecture.md).");
     prm.declare_entry("update scheme",
                       "USL",
-                      Patterns::Selection("USL|USF|MUSL"),
+                      Patterns::Selection(update_scheme_names.selection()),
                       "When stresses are updated: USL (last, from the new "
                       "grid velocity), USF (first) or MUSL (last, from "
                       "particle velocities mapped back to the grid).");
     prm.declare_entry("basis",
                       "linear",
-                      Patterns::Selection("linear|uGIMP|cpGIMP|quadratic "
-                                          "B-spline|cubic B-spline"),
+                      Patterns::Selection(basis_names.selection()),
                       "Shape functions between points and grid nodes: "
                       "linear, uGIMP (each point a domain of h / points per "
                       "cell), cpGIMP (that domain stretched with F), "
@@ -117,7 +116,7 @@ namespace mpm
                       "walls hold.");
     prm.declare_entry("transfer",
                       "FLIP",
-                      Patterns::Selection("FLIP|APIC"),
+                      Patterns::Selection(transfer_names.selection()),
                       "Velocity transfer: FLIP (the PIC/FLIP blend set by "
                       "'FLIP fraction') or APIC (points carry an affine "
                       "velocity; conserves angular momentum; 'FLIP "
@@ -230,20 +229,12 @@ namespace mpm
     const double max_cfl = lifted != nullptr ? std::atof(lifted) : 0.8;
     cfl_number = Parse::bounded_double(prm, s, "CFL number", 0, max_cfl, true);
     fixed_time_step = Parse::bounded_double(prm, s, "time step", 0, 1e300);
-    scheme_name     = prm.get("update scheme");
-    scheme          = scheme_name == "USL"   ? UpdateScheme::USL
-                      : scheme_name == "USF" ? UpdateScheme::USF
-                                             : UpdateScheme::MUSL;
-    basis_name      = prm.get("basis");
-    basis           = basis_name == "linear"   ? BasisType::linear
-                      : basis_name == "uGIMP"  ? BasisType::uniform_gimp
-                      : basis_name == "cpGIMP" ? BasisType::cpgimp
-                      : basis_name == "quadratic B-spline" ? BasisType::quadratic_bspline
-                                                           : BasisType::cubic_bspline;
-    transfer = prm.get("transfer") == "APIC" ? Transfer::apic : Transfer::flip;
-    flip_fraction = Parse::bounded_double(prm, s, "FLIP fraction", 0, 1);
-    gravity       = Parse::vector<dim>(prm, s, "gravity");
-    damping       = Parse::bounded_double(prm, s, "damping", 0, 1e300);
+    scheme          = update_scheme_names.value(prm.get("update scheme"));
+    basis           = basis_names.value(prm.get("basis"));
+    transfer        = transfer_names.value(prm.get("transfer"));
+    flip_fraction   = Parse::bounded_double(prm, s, "FLIP fraction", 0, 1);
+    gravity         = Parse::vector<dim>(prm, s, "gravity");
+    damping         = Parse::bounded_double(prm, s, "damping", 0, 1e300);
     local_damping =
       Parse::bounded_double(prm, s, "local damping", 0, 1, false, true);
     mass_scaling = Parse::bounded_double(prm, s, "mass scaling", 1, 1e12);
@@ -261,8 +252,8 @@ namespace mpm
     energy_growth_bound =
       Parse::bounded_double(prm, s, "energy growth bound", 0, 1e300);
     energy_residual = prm.get_bool("energy residual");
-    out_of_grid = prm.get("out of grid") == "stop" ? OutOfGridPolicy::stop
-                                                   : OutOfGridPolicy::remove;
+    out_of_grid     = prm.get("out of grid") == "stop" ? OutOfGridPolicy::stop
+                                                       : OutOfGridPolicy::remove;
     macro_time_step =
       Parse::bounded_double(prm, s, "macro time step", 0, 1e300);
     substeps        = prm.get_integer("substeps");

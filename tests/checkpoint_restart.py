@@ -182,13 +182,20 @@ def main():
                     waited += 0.02
                 time.sleep(random.uniform(0, 1.5 * per_output))
                 kill_job(p)
+                # On a loaded machine the run can reach its end before the
+                # kill: then there is nothing left to restart.
+                finished = p.returncode == 0
                 started = started or os.path.exists(checkpoint) or \
                     os.path.exists(checkpoint + ".old")
                 print("kill %d: checkpoint %s" % (
                     k, "at t = %g" % checkpoint_time(checkpoint)
-                    if started else "not yet written"))
-            run(a.np, killed, *(every + (["--restart", checkpoint]
-                                         if started else [])))
+                    if started else "not yet written") +
+                    (" (the run had ended)" if finished else ""))
+                if finished:
+                    break
+            else:
+                run(a.np, killed, *(every + (["--restart", checkpoint]
+                                             if started else [])))
             equal = rows(straight) == rows(killed)
             print("after %d kills and restarts: %s" % (
                 a.kills, "bit for bit" if equal else "DIFFERENT"))

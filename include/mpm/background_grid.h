@@ -14,6 +14,8 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <mpm/options.h>
+
 #include <algorithm>
 #include <array>
 #include <functional>
@@ -40,6 +42,14 @@ namespace mpm
     friction, ///< Coulomb contact: no penetration, free separation
     absorbing ///< viscous dashpots that let waves leave (Lysmer-Kuhlemeyer)
   };
+
+  /// The face kinds by their names ('Grid/boundary x min', ...).
+  inline const OptionTable<BoundaryType> boundary_names = {
+    {"free", BoundaryType::free},
+    {"fixed", BoundaryType::fixed},
+    {"slip", BoundaryType::slip},
+    {"friction", BoundaryType::friction},
+    {"absorbing", BoundaryType::absorbing}};
 
 
   /// The name of grid face @p face (x min, x max, y min, ...), as in its

@@ -5,6 +5,8 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/utilities.h>
 
+#include <mpm/options.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -22,6 +24,14 @@ namespace mpm
     quadratic_bspline, ///< C1 quadratic B-spline, 3 nodes per direction
     cubic_bspline      ///< C2 cubic B-spline, 4 nodes per direction
   };
+
+  /// The bases by the names a scene gives them ('Simulation/basis').
+  inline const OptionTable<BasisType> basis_names = {
+    {"linear", BasisType::linear},
+    {"uGIMP", BasisType::uniform_gimp},
+    {"cpGIMP", BasisType::cpgimp},
+    {"quadratic B-spline", BasisType::quadratic_bspline},
+    {"cubic B-spline", BasisType::cubic_bspline}};
 
 
   /**

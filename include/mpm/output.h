@@ -7,7 +7,7 @@
 
 #include <mpm/background_grid.h>
 #include <mpm/material_points.h>
-#include <mpm/time_integrator.h>
+#include <mpm/statistics.h>
 
 #include <fstream>
 #include <functional>
@@ -17,6 +17,10 @@
 namespace mpm
 {
   using namespace dealii;
+
+  struct RunState;
+  template <int dim>
+  class TimeIntegrator;
 
   struct OutputParameters
   {
@@ -46,36 +50,6 @@ namespace mpm
     double progress_interval; ///< wall seconds
     /// Remove an earlier run's output from the directory (else refuse).
     bool replace_existing;
-  };
-
-
-  /// Sums over all points of the scene at one instant (collective).
-  template <int dim>
-  struct Statistics
-  {
-    double kinetic_energy       = 0;
-    double strain_energy        = 0;
-    double gravitational_energy = 0;
-    /// The part of the kinetic and gravitational energy that belongs to
-    /// rigid bodies (their motion is prescribed).
-    double                      rigid_kinetic_energy       = 0;
-    double                      rigid_gravitational_energy = 0;
-    Tensor<1, dim>              momentum;
-    Tensor<1, dim == 2 ? 1 : 3> angular_momentum;
-    double                      mass           = 0;
-    double                      momentum_scale = 0; ///< sum of m |v|
-    types::particle_index       n_particles    = 0;
-
-    double
-    total_energy() const
-    {
-      return kinetic_energy + strain_energy + gravitational_energy;
-    }
-
-    static Statistics
-    compute(const MaterialPoints<dim> &points,
-            const Tensor<1, dim>      &gravity,
-            MPI_Comm                   comm);
   };
 
 

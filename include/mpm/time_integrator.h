@@ -31,12 +31,23 @@ namespace mpm
     MUSL ///< USL with the updated particle momentum mapped back to the grid
   };
 
+  /// The update schemes by their names ('Simulation/update scheme').
+  inline const OptionTable<UpdateScheme> update_scheme_names = {
+    {"USL", UpdateScheme::USL},
+    {"USF", UpdateScheme::USF},
+    {"MUSL", UpdateScheme::MUSL}};
+
   /// How velocities go from points to the grid and back.
   enum class Transfer
   {
     flip, ///< PIC/FLIP blend, weighted by the FLIP fraction
     apic  ///< affine particle-in-cell: points carry a velocity gradient C_p
   };
+
+  /// The transfers by their names ('Simulation/transfer').
+  inline const OptionTable<Transfer> transfer_names = {{"FLIP", Transfer::flip},
+                                                       {"APIC",
+                                                        Transfer::apic}};
 
   template <int dim>
   struct IntegratorParameters
@@ -51,7 +62,6 @@ namespace mpm
     double          fixed_time_step; ///< 0: from the CFL condition
     UpdateScheme    scheme;
     BasisType       basis;
-    std::string     scheme_name, basis_name; ///< as given, for messages
     Transfer        transfer;
     double          flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
     Tensor<1, dim>  gravity;

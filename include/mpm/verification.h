@@ -8,7 +8,7 @@
 
 #include <mpm/checkpoint.h>
 #include <mpm/material_points.h>
-#include <mpm/output.h>
+#include <mpm/statistics.h>
 
 namespace mpm
 {
