@@ -240,32 +240,15 @@ namespace mpm
         return n;
       },
       resume == nullptr ? "" : Checkpoint::grid_file(checkpoint));
-    FieldRequests fields;
-    fields.initial_position =
-      output_parameters.writes("displacement") ||
-      Verification<dim>::needs_initial_position(verification_parameters);
-    for (const auto &body : body_parameters)
-      fields.initial_position =
-        fields.initial_position || body.body_force || body.is_displaced();
-    fields.deformation_gradient =
-      integrator_parameters.basis == BasisType::cpgimp;
-    fields.affine_velocity = integrator_parameters.transfer == Transfer::apic;
-    fields.macro_step      = integrator_parameters.macro_time_step > 0;
-    for (const auto &body : body_parameters)
-      {
-        fields.surface_area = fields.surface_area || body.has_surface_loads();
-        fields.surface_offset =
-          fields.surface_offset ||
-          (body.has_surface_loads() &&
-           body.loaded_face != numbers::invalid_unsigned_int);
-      }
-    // Each wall with friction keeps a stick spring per point.
-    std::vector<unsigned int> slip_slot;
-    for (const auto &wall : rigid_wall_parameters)
-      slip_slot.push_back(wall.friction_coefficient > 0
-                            ? fields.wall_slips++
-                            : numbers::invalid_unsigned_int);
-    fields.point_load = fields.surface_area || !rigid_wall_parameters.empty();
+    const FieldRequests fields =
+      point_fields_needed(integrator_parameters,
+                          body_parameters,
+                          rigid_wall_parameters,
+                          output_parameters.writes("displacement") ||
+                            Verification<dim>::needs_initial_position(
+                              verification_parameters));
+    const std::vector<unsigned int> slip_slot =
+      wall_slip_slots(rigid_wall_parameters);
     setup_scope.reset();
     setup_scope.emplace(*timer, "setup: points");
     points = std::make_unique<MaterialPoints<dim>>(*grid,

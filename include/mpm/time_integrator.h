@@ -94,6 +94,28 @@ namespace mpm
 
 
   /**
+   * The point fields a scene needs beyond those every scene stores: what
+   * its transfer, basis and macro step keep per point, what its bodies'
+   * loads and body forces read, a stick spring per rigid wall with
+   * friction, and the initial position where @p initial_position (the
+   * output of displacements, a verification) asks for it. The program and
+   * the unit tests lay out their points with it.
+   */
+  template <int dim>
+  FieldRequests
+  point_fields_needed(const IntegratorParameters<dim>             &integrator,
+                      const std::vector<BodyParameters<dim>>      &bodies,
+                      const std::vector<RigidWallParameters<dim>> &walls = {},
+                      const bool initial_position = false);
+
+  /// The stick-spring slot of each rigid wall (the walls with friction,
+  /// in order; numbers::invalid_unsigned_int for the others).
+  template <int dim>
+  std::vector<unsigned int>
+  wall_slip_slots(const std::vector<RigidWallParameters<dim>> &walls);
+
+
+  /**
    * The explicit MPM step, particles -> grid -> particles:
    *
    *   USL : P2G(m, mv, f)  grid(v, v*)  G2P(v, x, L, F)        stress
