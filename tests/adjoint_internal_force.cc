@@ -115,9 +115,11 @@ end
   contact_parameters.parse_parameters(prm, n_bodies);
 
   mpm::BackgroundGrid<2> grid(grid_parameters, comm);
-  mpm::FieldRequests     fields;
-  fields.deformation_gradient = basis == "cpGIMP";
-  mpm::MaterialPoints<2> points(grid, bodies, fields, comm);
+  mpm::MaterialPoints<2> points(grid,
+                                bodies,
+                                mpm::point_fields_needed(integrator_parameters,
+                                                         bodies),
+                                comm);
   points.generate();
 
   // Points moved off their lattice (up to 0.2 h, 0.2 / 16 here, in each

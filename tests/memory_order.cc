@@ -20,6 +20,8 @@
 #include <map>
 #include <vector>
 
+#include "scene.h"
+
 using namespace dealii;
 
 // What a point holds, in visiting order.
@@ -75,25 +77,12 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   ParameterHandler                 prm;
   mpm::declare_scene_parameters(prm, 1);
-  prm.parse_input_from_string(R"(
-subsection Simulation
-  set dimension = 2
-end
-subsection Grid
-  set cells = 64
-  set boundary y min = fixed
-  set boundary y max = slip
-  set boundary x max = free
-end
-subsection Bodies
-  subsection Body 0
-    set shape = ball
-    set center = 0.5
-    set radius = 0.3
-    set particles per cell = 2
-  end
-end
-)");
+  prm.parse_input_from_string(
+    tests::disk_scene(64,
+                      "",
+                      "  set boundary y min = fixed\n"
+                      "  set boundary y max = slip\n"
+                      "  set boundary x max = free\n"));
   const MPI_Comm                      comm = MPI_COMM_WORLD;
   mpm::GridParameters<2>              grid_parameters;
   std::vector<mpm::BodyParameters<2>> bodies(1);

@@ -7,13 +7,10 @@
 // trip and loses both; the program prints how much, and fails if APIC
 // drifts by more than 1e-12 or if PIC does not lose at least 1e-3 (the
 // test would then not tell the two apart).
-#include <deal.II/base/mpi.h>
-#include <deal.II/base/timer.h>
-
-#include <mpm/simulation.h>
-
 #include <iomanip>
 #include <iostream>
+
+#include "scene.h"
 
 using namespace dealii;
 
@@ -41,53 +38,16 @@ measure(const mpm::MaterialPoints<2> &points)
 bool
 round_trips(const std::string &basis, const std::string &transfer)
 {
-  ParameterHandler prm;
-  mpm::declare_scene_parameters(prm, 1);
-  prm.parse_input_from_string(R"(
-subsection Simulation
-  set dimension = 2
-  set constants = omega=0.4
-  set FLIP fraction = 0
-end
-subsection Grid
-  set cells = 32
-end
-subsection Bodies
-  subsection Body 0
-    set shape = ball
-    set center = 0.5
-    set radius = 0.3
-    set particles per cell = 2
-    set initial velocity = -omega*(y-0.5); omega*(x-0.5)
-  end
-end
-)");
-  prm.enter_subsection("Simulation");
-  prm.set("basis", basis);
-  prm.set("transfer", transfer);
-  prm.leave_subsection();
-
-  const MPI_Comm                      comm = MPI_COMM_WORLD;
-  mpm::GridParameters<2>              grid_parameters;
-  mpm::IntegratorParameters<2>        integrator_parameters;
-  std::vector<mpm::BodyParameters<2>> bodies(1);
-  grid_parameters.parse_parameters(prm);
-  integrator_parameters.parse_parameters(prm);
-  bodies[0].parse_parameters(prm, 0, grid_parameters);
-
-  mpm::BackgroundGrid<2> grid(grid_parameters, comm);
-  mpm::FieldRequests     fields;
-  fields.affine_velocity      = transfer == "APIC";
-  fields.deformation_gradient = basis == "cpGIMP";
-  mpm::MaterialPoints<2> points(grid, bodies, fields, comm);
-  points.generate();
-  TimerOutput            timer(comm,
-                    std::cout,
-                    TimerOutput::never,
-                    TimerOutput::wall_times);
-  mpm::VelocityRegion<2> no_region(mpm::VelocityRegionParameters<2>(), grid);
-  mpm::TimeIntegrator<2> integrator(
-    integrator_parameters, grid, points, no_region, timer, comm);
+  tests::Scene scene(
+    tests::disk_scene(32,
+                      "  set constants = omega=0.4\n"
+                      "  set FLIP fraction = 0\n",
+                      "",
+                      "    set initial velocity = -omega*(y-0.5); "
+                      "omega*(x-0.5)\n"),
+    {"Simulation/basis=" + basis, "Simulation/transfer=" + transfer});
+  const auto &points     = *scene.points;
+  auto       &integrator = *scene.integrator;
 
   const Moments before = measure(points);
   for (unsigned int i = 0; i < 100; ++i)

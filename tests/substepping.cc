@@ -28,91 +28,14 @@
 #include <memory>
 
 #include "checks.h"
+#include "scene.h"
 
 using namespace dealii;
 using namespace checks;
+using tests::Scene;
 
 namespace
 {
-  /// The components the integrator needs, made from a scene text.
-  struct Scene
-  {
-    Scene(const std::string &text, const std::vector<std::string> &settings)
-    {
-      mpm::declare_scene_parameters(prm, 1);
-      prm.parse_input_from_string(text);
-      for (const auto &s : settings)
-        {
-          // "Section/entry=value"
-          const auto slash = s.find('/'), equals = s.find('=');
-          prm.enter_subsection(s.substr(0, slash));
-          prm.set(s.substr(slash + 1, equals - slash - 1),
-                  s.substr(equals + 1));
-          prm.leave_subsection();
-        }
-      grid_parameters.parse_parameters(prm);
-      integrator_parameters.parse_parameters(prm);
-      bodies[0].parse_parameters(prm, 0, grid_parameters);
-      grid = std::make_unique<mpm::BackgroundGrid<2>>(grid_parameters, comm);
-      mpm::FieldRequests fields;
-      fields.affine_velocity =
-        integrator_parameters.transfer == mpm::Transfer::apic;
-      fields.deformation_gradient =
-        integrator_parameters.basis == mpm::BasisType::cpgimp;
-      fields.macro_step = integrator_parameters.macro_time_step > 0;
-      points =
-        std::make_unique<mpm::MaterialPoints<2>>(*grid, bodies, fields, comm);
-      points->generate();
-      region = std::make_unique<mpm::VelocityRegion<2>>(
-        mpm::VelocityRegionParameters<2>(), *grid);
-      integrator = std::make_unique<mpm::TimeIntegrator<2>>(
-        integrator_parameters, *grid, *points, *region, timer, comm);
-    }
-
-    const MPI_Comm                          comm = MPI_COMM_WORLD;
-    ParameterHandler                        prm;
-    mpm::GridParameters<2>                  grid_parameters;
-    mpm::IntegratorParameters<2>            integrator_parameters;
-    std::vector<mpm::BodyParameters<2>>     bodies{1};
-    std::unique_ptr<mpm::BackgroundGrid<2>> grid;
-    std::unique_ptr<mpm::MaterialPoints<2>> points;
-    std::unique_ptr<mpm::VelocityRegion<2>> region;
-    TimerOutput                             timer{comm,
-                      std::cout,
-                      TimerOutput::never,
-                      TimerOutput::wall_times};
-    std::unique_ptr<mpm::TimeIntegrator<2>> integrator;
-
-    /// Visit each owned grid node with mass: f(position, local index).
-    template <typename F>
-    void
-    for_each_node_with_mass(const F &f) const
-    {
-      const auto h = grid->cell_size();
-      const auto n = grid_parameters.n_cells;
-      for (unsigned int j = 0; j <= n[1]; ++j)
-        for (unsigned int i = 0; i <= n[0]; ++i)
-          {
-            const Point<2> x =
-              grid_parameters.lower_corner + Point<2>(i * h[0], j * h[1]);
-            const Point<2> e(1e-9, 1e-9);
-            for (const unsigned int k :
-                 grid->owned_nodes_in_box(x + Tensor<1, 2>(-e),
-                                          x + Tensor<1, 2>(e)))
-              if (integrator->nodal_mass(k) > 0)
-                f(x, k);
-          }
-    }
-
-    Tensor<1, 2>
-    nodal_velocity(const unsigned int k) const
-    {
-      return Tensor<1, 2>(
-        {integrator->nodal_velocity(k, 0), integrator->nodal_velocity(k, 1)});
-    }
-  };
-
-
   // -------------------------------------------------------------------------
   // 1. Affine secant motion.
   void
@@ -240,24 +163,9 @@ end
     unsigned int          iterations = 0;
     for (const unsigned int least_squares : {0, 1})
       {
-        Scene        scene(R"(
-subsection Simulation
-  set dimension = 2
-  set basis = quadratic B-spline
-  set macro time step = 0.1
-end
-subsection Grid
-  set cells = 8
-end
-subsection Bodies
-  subsection Body 0
-    set shape = ball
-    set center = 0.5
-    set radius = 0.3
-    set particles per cell = 2
-  end
-end
-)",
+        Scene        scene(tests::disk_scene(8,
+                                      "  set basis = quadratic B-spline\n"
+                                             "  set macro time step = 0.1\n"),
                     {std::string("Simulation/macro reconstruction=") +
                             (least_squares ? "least squares" : "APIC")});
         const double Dt = 0.1;
@@ -298,31 +206,20 @@ end
   void
   momentum_of_reconstruction()
   {
-    Scene        scene(R"(
-subsection Simulation
-  set dimension = 2
-  set basis = quadratic B-spline
-  set constants = omega=2
-  set macro time step = 0.005
-end
-subsection Grid
-  set cells = 32
-end
-subsection Bodies
-  subsection Body 0
-    set shape = ball
-    set center = 0.5
-    set radius = 0.2
-    set particles per cell = 2
-    set initial velocity = 0.3 - omega*(y-0.5); 0.1 + omega*(x-0.5)
-    set material = neo-Hookean
-    subsection neo-Hookean
-      set Young's modulus = 1e6
-    end
-  end
-end
-)",
-                {});
+    Scene scene(
+      tests::disk_scene(32,
+                        "  set basis = quadratic B-spline\n"
+                        "  set constants = omega=2\n"
+                        "  set macro time step = 0.005\n",
+                        "",
+                        "    set initial velocity = 0.3 - omega*(y-0.5); "
+                        "0.1 + omega*(x-0.5)\n"
+                        "    set material = neo-Hookean\n"
+                        "    subsection neo-Hookean\n"
+                        "      set Young's modulus = 1e6\n"
+                        "    end\n",
+                        0.2),
+      {});
     const double Dt = 0.005;
     // Substeps from the CFL condition: the macro step is about 12 of them.
     scene.integrator->step(Dt);
