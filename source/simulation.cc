@@ -317,16 +317,15 @@ namespace mpm
       }
     else
       next_checkpoint_time = checkpoint_parameters.interval;
-    std::vector<std::string> columns = verification->columns();
-    for (const auto &c : velocity_region->columns())
-      columns.push_back(c);
+    force_reporters = {velocity_region.get()};
     for (const auto &wall : rigid_walls)
-      for (const auto &c : wall->columns())
+      force_reporters.push_back(wall.get());
+    force_reporters.push_back(virtual_fluid.get());
+    force_reporters.push_back(contact.get());
+    std::vector<std::string> columns = verification->columns();
+    for (const auto *reporter : force_reporters)
+      for (const auto &c : reporter->columns())
         columns.push_back(c);
-    for (const auto &c : virtual_fluid->columns())
-      columns.push_back(c);
-    for (const auto &c : contact->columns())
-      columns.push_back(c);
     if (integrator_parameters.macro_time_step > 0)
       for (const std::string c : {"macro_steps", "macro_mismatch"})
         columns.push_back(c);
@@ -365,11 +364,8 @@ namespace mpm
         last_output_time     = resume->get("last_output_time");
         next_checkpoint_time = resume->get("checkpoint_next_time");
         const double t       = integrator->time();
-        velocity_region->mean_force_since_last_call(t, comm);
-        for (const auto &wall : rigid_walls)
-          wall->mean_force_since_last_call(t, comm);
-        virtual_fluid->mean_force_since_last_call(t, comm);
-        contact->mean_forces_since_last_call(t, comm);
+        for (auto *reporter : force_reporters)
+          reporter->mean_force_since_last_call(t, comm);
         pcout << "  restarted from '" << checkpoint << "' at t = " << t
               << ", step " << integrator->step_number() << std::endl;
       }
@@ -600,19 +596,10 @@ namespace mpm
     auto extra = verification->evaluate(s, integrator->time());
     if (integrator->time() == last_output_time)
       return;
-    for (const double f :
-         velocity_region->mean_force_since_last_call(integrator->time(), comm))
-      extra.push_back(f);
-    for (const auto &wall : rigid_walls)
+    for (auto *reporter : force_reporters)
       for (const double f :
-           wall->mean_force_since_last_call(integrator->time(), comm))
+           reporter->mean_force_since_last_call(integrator->time(), comm))
         extra.push_back(f);
-    for (const double f :
-         virtual_fluid->mean_force_since_last_call(integrator->time(), comm))
-      extra.push_back(f);
-    for (const double f :
-         contact->mean_forces_since_last_call(integrator->time(), comm))
-      extra.push_back(f);
     if (integrator_parameters.macro_time_step > 0)
       {
         extra.push_back(integrator->macro_step_number());

@@ -121,6 +121,9 @@ namespace mpm
     std::unique_ptr<EnergyGuard<dim>>            energy_guard;
     std::unique_ptr<BodyExtents<dim>>            extents; ///< if asked for
     std::unique_ptr<Output<dim>>                 output;
+    /// The conditions whose mean forces are columns of statistics.csv, in
+    /// the order of their columns (region, walls, fluid, contact).
+    std::vector<ForceReporter *> force_reporters;
     /// The names of the columns of statistics.csv after the statistics'
     /// own (verification, walls, regions, ..., extents last).
     std::vector<std::string> statistics_columns;

@@ -240,7 +240,7 @@ namespace mpm
 
   template <int dim>
   std::vector<double>
-  MultiFieldContact<dim>::mean_forces_since_last_call(const double time,
+  MultiFieldContact<dim>::mean_force_since_last_call(const double time,
                                                       MPI_Comm     comm)
   {
     std::vector<double> values;

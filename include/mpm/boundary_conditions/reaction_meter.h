@@ -12,6 +12,29 @@ namespace mpm
   using namespace dealii;
 
   /**
+   * A condition that reports the mean force it exerts over each output
+   * interval as columns of statistics.csv (the velocity region, each rigid
+   * wall, the virtual fluid, the rigid bodies of contact). Simulation keeps
+   * one list of them, from which the columns' names, their values and
+   * their restart all come.
+   */
+  class ForceReporter
+  {
+  public:
+    virtual ~ForceReporter() = default;
+
+    /// The statistics columns (none when the scene has nothing to report).
+    virtual std::vector<std::string>
+    columns() const = 0;
+
+    /// The mean forces since the last call, in the order of columns(),
+    /// summed over the ranks (collective); the averaging restarts.
+    virtual std::vector<double>
+    mean_force_since_last_call(const double time, MPI_Comm comm) = 0;
+  };
+
+
+  /**
    * The mean force of a boundary condition over an output interval: the
    * impulses it gives are summed, and read as impulse / elapsed time.
    * Explicit MPM's nodal or contact reactions are noisy from step to step;

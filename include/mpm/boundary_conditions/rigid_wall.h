@@ -64,7 +64,7 @@ namespace mpm
    * l/2 into the wall.
    */
   template <int dim>
-  class RigidWall
+  class RigidWall : public ForceReporter
   {
   public:
     /// @p slip_slot: which of the points' stick springs this wall uses
@@ -131,12 +131,12 @@ namespace mpm
 
     /// Statistics columns: "wall<N>_force_x", ...
     std::vector<std::string>
-    columns() const;
+    columns() const override;
 
     /// The mean force of the material on the wall since the last call,
     /// summed over ranks (collective), and restart the averaging.
     std::vector<double>
-    mean_force_since_last_call(const double time, MPI_Comm comm);
+    mean_force_since_last_call(const double time, MPI_Comm comm) override;
 
   private:
     const RigidWallParameters<dim> prm;

@@ -44,7 +44,7 @@ namespace mpm
    * interval (explicit MPM's nodal reaction is noisy from step to step).
    */
   template <int dim>
-  class VelocityRegion
+  class VelocityRegion : public ForceReporter
   {
   public:
     VelocityRegion(const VelocityRegionParameters<dim> &parameters,
@@ -86,12 +86,12 @@ namespace mpm
 
     /// Statistics columns: "region_force_x", ...
     std::vector<std::string>
-    columns() const;
+    columns() const override;
 
     /// The mean force on the material since the last call, summed over
     /// ranks (collective), and restart the averaging.
     std::vector<double>
-    mean_force_since_last_call(const double time, MPI_Comm comm);
+    mean_force_since_last_call(const double time, MPI_Comm comm) override;
 
   private:
     const VelocityRegionParameters<dim> prm;

@@ -47,7 +47,7 @@ namespace mpm
    * columns fluid_force_x, ...): its vertical part is the buoyancy.
    */
   template <int dim>
-  class VirtualFluid
+  class VirtualFluid : public ForceReporter
   {
   public:
     VirtualFluid(const VirtualFluidParameters<dim> &parameters,
@@ -81,11 +81,11 @@ namespace mpm
     }
 
     std::vector<std::string>
-    columns() const;
+    columns() const override;
 
     /// Mean force of the fluid on the bodies since the last call (collective).
     std::vector<double>
-    mean_force_since_last_call(const double time, MPI_Comm comm);
+    mean_force_since_last_call(const double time, MPI_Comm comm) override;
 
   private:
     const VirtualFluidParameters<dim>    prm;

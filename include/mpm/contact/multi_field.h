@@ -62,7 +62,7 @@ namespace mpm
    * is its force on the material (statistics: rigid<b>_force_x, ...).
    */
   template <int dim>
-  class MultiFieldContact
+  class MultiFieldContact : public ForceReporter
   {
   public:
     MultiFieldContact(const ContactParameters<dim>           &parameters,
@@ -145,10 +145,10 @@ namespace mpm
 
     /// Statistics columns rigid<b>_force_x, ...
     std::vector<std::string>
-    columns() const;
+    columns() const override;
 
     std::vector<double>
-    mean_forces_since_last_call(const double time, MPI_Comm comm);
+    mean_force_since_last_call(const double time, MPI_Comm comm) override;
 
   private:
     const double              mu;
