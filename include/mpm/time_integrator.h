@@ -13,6 +13,7 @@
 #include <mpm/boundary_conditions/virtual_fluid.h>
 #include <mpm/checkpoint.h>
 #include <mpm/contact/multi_field.h>
+#include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
 
 #include <array>
@@ -22,76 +23,6 @@
 namespace mpm
 {
   using namespace dealii;
-
-  /// When the stress is updated within a step.
-  enum class UpdateScheme
-  {
-    USL, ///< update stress last, from the new grid velocity
-    USF, ///< update stress first, from the grid velocity before forces
-    MUSL ///< USL with the updated particle momentum mapped back to the grid
-  };
-
-  /// The update schemes by their names ('Simulation/update scheme').
-  inline const OptionTable<UpdateScheme> update_scheme_names = {
-    {"USL", UpdateScheme::USL},
-    {"USF", UpdateScheme::USF},
-    {"MUSL", UpdateScheme::MUSL}};
-
-  /// How velocities go from points to the grid and back.
-  enum class Transfer
-  {
-    flip, ///< PIC/FLIP blend, weighted by the FLIP fraction
-    apic  ///< affine particle-in-cell: points carry a velocity gradient C_p
-  };
-
-  /// The transfers by their names ('Simulation/transfer').
-  inline const OptionTable<Transfer> transfer_names = {{"FLIP", Transfer::flip},
-                                                       {"APIC",
-                                                        Transfer::apic}};
-
-  template <int dim>
-  struct IntegratorParameters
-  {
-    static void
-    declare_parameters(ParameterHandler &prm);
-    void
-    parse_parameters(ParameterHandler &prm);
-
-    double          end_time;
-    double          cfl_number;
-    double          fixed_time_step; ///< 0: from the CFL condition
-    UpdateScheme    scheme;
-    BasisType       basis;
-    Transfer        transfer;
-    double          flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
-    Tensor<1, dim>  gravity;
-    double          damping;       ///< mass-proportional, in 1/s
-    double          local_damping; ///< Cundall's alpha, in [0, 1)
-    double          mass_scaling;  ///< inertia factor, >= 1
-    double          small_mass_fraction;
-    double          J_min, J_max; ///< run-health guard on V / V0
-    bool            f_bar;        ///< volume change averaged over each cell
-    double          energy_growth_bound; ///< run-health guard, 0: off
-    bool            energy_residual;     ///< the step's energy residual
-    OutOfGridPolicy out_of_grid;
-    /// Substepping (seed 003): the macro step Dt, 0: off.
-    double macro_time_step;
-    /// Substeps per macro step, 0: as many as the CFL condition needs.
-    unsigned int substeps;
-    /// Macro-step operation: dynamic relaxation at kinetic energy peaks.
-    bool kinetic_damping;
-    /// The reconstruction: seed 003's closed form (APIC), or its
-    /// least-squares system (4) solved with Trilinos.
-    bool least_squares;
-    /// lambda / h^2 of the least-squares system.
-    double least_squares_weight;
-    /// AMG (Trilinos ML) instead of Jacobi for its conjugate gradients.
-    bool least_squares_amg;
-    /// Newmark's gamma of the explicit (beta = 0) member; 1/2: central
-    /// difference, the plain step.
-    double newmark_gamma;
-  };
-
 
   /**
    * The point fields a scene needs beyond those every scene stores: what
