@@ -67,6 +67,17 @@ def complete(directory):
     return problems
 
 
+def frame_times(out):
+    """The frames in @p out and when each was last written."""
+    times = {}
+    for f in glob.glob(os.path.join(out, "particles_*.pvtu")):
+        try:
+            times[f] = os.path.getmtime(f)
+        except OSError:  # replaced while we looked
+            pass
+    return times
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--exe", required=True)
@@ -88,7 +99,15 @@ def main():
         for k in range(a.kills):
             p = subprocess.Popen(base, stdout=subprocess.DEVNULL,
                                  stderr=subprocess.DEVNULL)
-            time.sleep(random.uniform(0.3, 1.5))
+            # Kill once the run writes frames (a frame every step, so the
+            # kill lands in or between writes): a fixed delay found a
+            # loaded machine, or a Debug build, still setting up.
+            started = time.time()
+            before = frame_times(out)
+            while p.poll() is None and time.time() - started < 120 and \
+                    frame_times(out) == before:
+                time.sleep(0.01)
+            time.sleep(random.uniform(0, 0.5))
             p.kill()
             p.wait()
             problems = complete(out)
