@@ -50,21 +50,24 @@ namespace mpm
     // origin, and can be far larger than any change of it).
     const double noise =
       1e-10 * (std::abs(initial_gravity) + std::abs(initial_motion));
-    const auto fraction = [&](const double e) {
-      return put_in > 0 ? e / put_in : 0.;
-    };
+    // Both balances stop the run with the same tail: how much of the
+    // energy put in, the bound, the fastest point and what to try.
+    const auto stop =
+      [&](std::ostringstream &msg, const double excess, const char *verdict) {
+        msg << (put_in > 0 ? excess / put_in : 0.) << " of the energy put in ("
+            << put_in
+            << " J), more than 'Simulation/energy growth bound' = " << bound
+            << verdict << " (the fastest point: " << fastest_point()
+            << "; try a smaller CFL number, a FLIP fraction below 1, or MUSL)";
+        throw RunError(msg.str());
+      };
     if (!(gain <= bound * put_in + noise))
       {
         std::ostringstream msg;
         msg << "t = " << t << ": the energy of the bodies grew by " << gain
             << " J beyond the work done on them (energy " << initial_energy
-            << " -> " << energy << " J, work " << work << " J), "
-            << fraction(gain) << " of the energy put in (" << put_in
-            << " J), more than 'Simulation/energy growth bound' = " << bound
-            << "; the run is unstable (the fastest point: " << fastest_point()
-            << "; try a smaller CFL number, a FLIP fraction below 1, or "
-               "MUSL)";
-        throw RunError(msg.str());
+            << " -> " << energy << " J, work " << work << " J), ";
+        stop(msg, gain, "; the run is unstable");
       }
     if (!(residual <= bound * put_in + noise))
       {
@@ -74,15 +77,11 @@ namespace mpm
                "work their stresses absorbed, "
             << stress_work
             << " J of it, beyond their initial energy and the work done on "
-               "them), "
-            << fraction(residual) << " of the energy put in (" << put_in
-            << " J), more than 'Simulation/energy growth bound' = " << bound
-            << ": the numerics create energy, which plasticity hides in the "
-               "total energy (the fastest point: "
-            << fastest_point()
-            << "; try a smaller CFL number, a FLIP fraction below 1, or "
-               "MUSL)";
-        throw RunError(msg.str());
+               "them), ";
+        stop(msg,
+             residual,
+             ": the numerics create energy, which plasticity hides in the "
+             "total energy");
       }
     return {{put_in, residual}};
   }
