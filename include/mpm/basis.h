@@ -514,4 +514,15 @@ namespace mpm
   }
 } // namespace mpm
 
+/**
+ * Expand @p M(dim, Basis) for every basis class: the explicit
+ * instantiations of a template on the basis (the transfers' loops) list
+ * the bases here, as with_basis() does at run time.
+ */
+#define MPM_FOR_EACH_BASIS(M, dim)        \
+  M(dim, mpm::LinearBasis<dim>)           \
+  M(dim, mpm::GIMPBasis<dim>)             \
+  M(dim, mpm::QuadraticBSplineBasis<dim>) \
+  M(dim, mpm::CubicBSplineBasis<dim>)
+
 #endif

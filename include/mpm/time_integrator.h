@@ -8,11 +8,13 @@
 
 #include <mpm/background_grid.h>
 #include <mpm/basis.h>
+#include <mpm/boundary_conditions/grid_faces.h>
 #include <mpm/boundary_conditions/rigid_wall.h>
 #include <mpm/boundary_conditions/velocity_region.h>
 #include <mpm/boundary_conditions/virtual_fluid.h>
 #include <mpm/checkpoint.h>
 #include <mpm/contact/multi_field.h>
+#include <mpm/grid/nodal_layout.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
 
@@ -236,11 +238,16 @@ namespace mpm
     stress_work() const;
 
   private:
-    // Components of the interleaved nodal vectors.
-    static constexpr unsigned int mass = 0, momentum = 1, force = 1 + dim;
-    static constexpr unsigned int n_sums    = 1 + 2 * dim;
-    static constexpr unsigned int node_mass = 0, v_old = 1, v_new = 1 + dim;
-    static constexpr unsigned int n_velocities = 1 + 2 * dim;
+    // Components of the interleaved nodal vectors (see NodalLayout).
+    using Layout                               = NodalLayout<dim>;
+    static constexpr unsigned int mass         = Layout::mass;
+    static constexpr unsigned int momentum     = Layout::momentum;
+    static constexpr unsigned int force        = Layout::force;
+    static constexpr unsigned int n_sums       = Layout::n_sums;
+    static constexpr unsigned int node_mass    = Layout::node_mass;
+    static constexpr unsigned int v_old        = Layout::v_old;
+    static constexpr unsigned int v_new        = Layout::v_new;
+    static constexpr unsigned int n_velocities = Layout::n_velocities;
 
     /// One explicit step of @p dt (all that step() does without
     /// substepping).
@@ -370,17 +377,11 @@ namespace mpm
     unsigned int
     slot_of(const unsigned int node, const unsigned int field) const
     {
-      return n_fields * node + field;
+      return Layout::slot_of(node, field, n_fields);
     }
-    /// Coulomb contact of the nodal velocity @p v with grid face @p face.
-    static void
-    apply_coulomb_contact(double *v, const unsigned int face, const double mu);
-    /// Absorbing faces' dashpots on the nodal velocities in @p slot over
-    /// the step @p dt.
-    void
-    apply_dashpots(const unsigned int slot, const double dt);
-    /// Boundary constraints on the nodal velocities in @p slot; @p dt > 0
-    /// at the force update, where reactions are measured and dashpots act;
+    /// Boundary constraints on the nodal velocities in @p slot: contact,
+    /// the grid's faces, the velocity region; @p dt > 0 at the force
+    /// update, where reactions are measured and dashpots act;
     /// @p for_strain_rate as in grid_velocities_from_momentum.
     void
     apply_velocity_constraints(const unsigned int slot,
@@ -494,7 +495,9 @@ namespace mpm
     const IntegratorParameters<dim> prm;
     const BackgroundGrid<dim>      &grid;
     MaterialPoints<dim>            &points;
-    VelocityRegion<dim>            &velocity_region;
+    /// The grid's faces (fixed, slip, friction, absorbing).
+    const GridFaces<dim> faces;
+    VelocityRegion<dim> &velocity_region;
     /// The walls acting on the points.
     const std::vector<RigidWall<dim> *> rigid_walls;
     /// Null, or a fluid acting on the bodies' surface (only if enabled).
@@ -530,8 +533,6 @@ namespace mpm
     std::vector<double> wave_modulus_of_body;
     /// dM/dp of each body (Material::wave_modulus_pressure_slope).
     std::vector<double> wave_modulus_pressure_slope_of_body;
-    /// Impedances rho c_p and rho c_s of the absorbing faces.
-    double normal_impedance = 0, shear_impedance = 0;
     /// Each body's pressure and traction on its loaded surface (null:
     /// none).
     std::vector<FunctionParser<dim> *> pressures, tractions;

@@ -1,12 +1,15 @@
 #ifndef mpm_time_integrator_templates_h
 #define mpm_time_integrator_templates_h
 
-// The particle loops of the step, shared by the translation units of the
-// integrator (time_integrator.cc, substepping.cc): templates on the basis,
-// instantiated where they are used, so the loops have no virtual calls.
+// The particle loops of the step and the helpers their kernels call,
+// shared by the translation units of the integrator's stages: templates on
+// the basis, instantiated where they are used, so the loops have no
+// virtual calls and every kernel is inlined into its loop.
+#include <mpm/parameters.h>
 #include <mpm/time_integrator.h>
 
 #include <algorithm>
+#include <sstream>
 
 namespace mpm
 {
@@ -174,6 +177,81 @@ namespace mpm
     return half_width;
   }
 
+
+
+  /**
+   * A load given by an expression (pressure, traction, body force) can
+   * only be checked where it is evaluated. A magnitude beyond
+   * largest_input (or not finite) is a mistake in the scene: it is named
+   * here, before the forces it makes overflow the point's motion into a
+   * diagnosis that names no parameter.
+   */
+  template <int dim>
+  inline void
+  TimeIntegrator<dim>::check_load(const double       magnitude,
+                                  const unsigned int body,
+                                  const char        *name,
+                                  const Point<dim>  &x)
+  {
+    if (magnitude <= largest_input || !failure.empty())
+      return;
+    std::ostringstream msg;
+    msg << "step " << n_steps << ", t = " << t << ": parameter '"
+        << points.bodies()[body].name << "/" << name << "' is " << magnitude
+        << " in magnitude at (" << x << "): a load must be finite and at most "
+        << largest_input << " in magnitude (Pa, or m/s^2 for a body force)";
+    failure = msg.str();
+  }
+
+
+  template <int dim>
+  inline Tensor<1, dim>
+  TimeIntegrator<dim>::body_force(const double *q) const
+  {
+    const FieldLayout &l = points.layout();
+    Tensor<1, dim>     b;
+    if (FunctionParser<dim> *f = body_forces[q[l.body]])
+      {
+        const Point<dim> X(Fields::vector<dim>(q + l.initial_position));
+        for (unsigned int d = 0; d < dim; ++d)
+          b[d] = f->value(X, d);
+      }
+    return b;
+  }
+
+
+  template <int dim>
+  template <typename Stencil>
+  inline Tensor<2, dim>
+  TimeIntegrator<dim>::velocity_gradient(const Stencil     &s,
+                                         const double      *u,
+                                         const unsigned int stride,
+                                         const unsigned int slot,
+                                         const double       light_mass) const
+  {
+    Tensor<1, dim> v_point;
+    for (unsigned int v = 0; v < s.weights.size(); ++v)
+      v_point +=
+        s.weights[v] * Fields::vector<dim>(u + stride * s.nodes[v] + slot);
+    // Sum of (v_I - v_point) grad phi_I: equal to sum v_I grad phi_I, since
+    // the gradients sum to zero, but light nodes can now be left out. With
+    // USL and the linear basis they must be: a node that only the edge of
+    // a point's support reaches has a tiny mass phi m_p but a full force
+    // V sigma grad phi, so its force-updated velocity grows as 1 / phi; in
+    // the point's velocity it counts with phi, here with grad phi. The
+    // internal force then leaves them out too (light_node_gradients).
+    // Massless nodes (light_mass 0) have no velocity at all; they lie in
+    // a stencil only where a point lies on a cell face, weight 0.
+    Tensor<2, dim> L;
+    for (unsigned int v = 0; v < s.weights.size(); ++v)
+      {
+        const double *node = u + stride * s.nodes[v];
+        if (node[node_mass] > light_mass)
+          L += outer_product(Fields::vector<dim>(node + slot) - v_point,
+                             s.gradients[v]);
+      }
+    return L;
+  }
 
 
   template <int dim>

@@ -1,0 +1,69 @@
+#ifndef mpm_boundary_conditions_grid_faces_h
+#define mpm_boundary_conditions_grid_faces_h
+
+#include <mpm/background_grid.h>
+#include <mpm/bodies/body_parameters.h>
+
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The grid's faces acting on the nodal velocities: each face kind of
+   * 'Grid/boundary' (BoundaryType) is a rule on the velocity of the nodes
+   * on that face, applied to every velocity field of a node alike, after
+   * each transfer to the grid and after the force update:
+   *
+   * - fixed, slip: the components the face holds are set to zero (the
+   *   grid lists each owned node with its mask, constrained_nodes());
+   * - friction: Coulomb contact, a velocity into the face is removed and
+   *   friction takes at most mu times that from the tangential velocity;
+   * - absorbing: a dashpot rho c on the normal and the tangential
+   *   components (Lysmer-Kuhlemeyer), only at the force update.
+   *
+   * A new face kind is a value of BoundaryType, its nodes in
+   * BackgroundGrid, and its rule here.
+   */
+  template <int dim>
+  class GridFaces
+  {
+  public:
+    /// Takes the absorbing faces' impedances from the body
+    /// 'Grid/absorbing body' of @p bodies (checked, if a face absorbs).
+    GridFaces(const BackgroundGrid<dim>              &grid,
+              const std::vector<BodyParameters<dim>> &bodies);
+
+    /**
+     * Apply every face's rule to the nodal velocities at @p slot (an
+     * offset in a node's entry of NodalLayout::n_velocities values) of
+     * the @p n_fields fields of each node, in the interleaved array @p u.
+     * @p dt > 0 at the force update, where the dashpots act.
+     */
+    void
+    apply(double            *u,
+          const unsigned int n_fields,
+          const unsigned int slot,
+          const double       dt) const;
+
+    /// Coulomb contact of the nodal velocity @p v with grid face @p face
+    /// (f = x min, x max, y min, ...) of friction coefficient @p mu.
+    static void
+    apply_coulomb_contact(double *v, const unsigned int face, const double mu);
+
+  private:
+    /// The absorbing faces' dashpots over the step @p dt.
+    void
+    apply_dashpots(double            *u,
+                   const unsigned int n_fields,
+                   const unsigned int slot,
+                   const double       dt) const;
+
+    const BackgroundGrid<dim> &grid;
+    /// Impedances rho c_p and rho c_s of the absorbing faces.
+    double normal_impedance = 0, shear_impedance = 0;
+  };
+} // namespace mpm
+
+#endif

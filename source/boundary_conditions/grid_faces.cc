@@ -1,0 +1,119 @@
+#include <mpm/boundary_conditions/grid_faces.h>
+#include <mpm/grid/nodal_layout.h>
+#include <mpm/parameters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace mpm
+{
+  template <int dim>
+  GridFaces<dim>::GridFaces(const BackgroundGrid<dim>              &grid,
+                            const std::vector<BodyParameters<dim>> &bodies)
+    : grid(grid)
+  {
+    const auto &boundary = grid.parameters().boundary;
+    if (std::count(boundary.begin(), boundary.end(), BoundaryType::absorbing) ==
+        0)
+      return;
+    const unsigned int b = grid.parameters().absorbing_body;
+    if (b >= bodies.size())
+      throw InputError("Grid/absorbing body",
+                       std::to_string(b),
+                       "must be the index of a body, < " +
+                         std::to_string(bodies.size()));
+    const auto &body = bodies[b];
+    normal_impedance =
+      std::sqrt(body.density * body.material->p_wave_modulus());
+    shear_impedance = std::sqrt(body.density * body.material->shear_modulus());
+  }
+
+
+  template <int dim>
+  void
+  GridFaces<dim>::apply(double            *u,
+                        const unsigned int n_fields,
+                        const unsigned int slot,
+                        const double       dt) const
+  {
+    using Layout                 = NodalLayout<dim>;
+    constexpr unsigned int width = Layout::n_velocities;
+    for (const auto &[i, mask] : grid.constrained_nodes())
+      for (unsigned int f = 0; f < n_fields; ++f)
+        for (unsigned int d = 0; d < dim; ++d)
+          if (mask & (1u << d))
+            u[width * Layout::slot_of(i, f, n_fields) + slot + d] = 0;
+    const double mu = grid.parameters().friction_coefficient;
+    for (const auto &[i, faces] : grid.friction_nodes())
+      for (unsigned int f = 0; f < n_fields; ++f)
+        for (unsigned int face = 0; face < 2 * dim; ++face)
+          if (faces & (1u << face))
+            apply_coulomb_contact(
+              u + width * Layout::slot_of(i, f, n_fields) + slot, face, mu);
+    if (dt > 0 && !grid.absorbing_nodes().empty())
+      apply_dashpots(u, n_fields, slot, dt);
+  }
+
+
+  template <int dim>
+  void
+  GridFaces<dim>::apply_dashpots(double            *u,
+                                 const unsigned int n_fields,
+                                 const unsigned int slot,
+                                 const double       dt) const
+  {
+    // The dashpot force -A Z v (Z = rho c_p on the normal, rho c_s on the
+    // tangential components) taken implicitly in the force update,
+    // m (v - v*) = -dt A Z v, so v = v* / (1 + dt A Z / m): stable for any
+    // nodal mass, and a light node is simply held.
+    using Layout = NodalLayout<dim>;
+    for (const AbsorbingNode &a : grid.absorbing_nodes())
+      for (unsigned int f = 0; f < n_fields; ++f)
+        {
+          double *node =
+            u + Layout::n_velocities * Layout::slot_of(a.node, f, n_fields);
+          const double m = node[Layout::node_mass];
+          if (!(m > 0))
+            continue;
+          const double normal = 1. / (1. + dt * a.area * normal_impedance / m);
+          const double shear  = 1. / (1. + dt * a.area * shear_impedance / m);
+          for (unsigned int d = 0; d < dim; ++d)
+            node[slot + d] *= (d == a.face / 2) ? normal : shear;
+        }
+  }
+
+
+  template <int dim>
+  void
+  GridFaces<dim>::apply_coulomb_contact(double            *v,
+                                        const unsigned int face,
+                                        const double       mu)
+  {
+    // The face's outward normal is +-e_axis. Only a velocity into the face
+    // is in contact; its removal is the normal impulse (per unit mass), and
+    // friction takes at most mu times that from the tangential velocity.
+    const unsigned int axis   = face / 2;
+    const double       sign   = (face % 2 == 0) ? -1. : 1.;
+    const double       inward = sign * v[axis];
+    if (!(inward > 0))
+      return;
+    v[axis]              = 0;
+    double tangential_sq = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d != axis)
+        tangential_sq += v[d] * v[d];
+    if (tangential_sq == 0)
+      return;
+    const double tangential = std::sqrt(tangential_sq);
+    const double scale      = std::max(0., 1. - mu * inward / tangential);
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d != axis)
+        v[d] *= scale;
+  }
+
+
+  template class GridFaces<1>;
+  template class GridFaces<2>;
+  template class GridFaces<3>;
+} // namespace mpm

@@ -1,0 +1,445 @@
+// The transfer to the grid (P2G): each point's mass, momentum (APIC: its
+// affine velocity field sampled at the node) and force (its stress, body
+// force and point loads) scattered to the nodes of its stencil, with the
+// small-mass guard's forces; the virtual fluid's forces on the wetted
+// surface; and the check that the forces are the strain rate's adjoint.
+#include <mpm/time_integrator.h>
+#include <mpm/time_integrator.templates.h>
+
+#include <cmath>
+#include <type_traits>
+
+namespace mpm
+{
+  /**
+   * USL takes its strain rate from the force-updated velocities, and
+   * leaves the light nodes out of it (velocity_gradient). The internal
+   * force must then leave them out the same way, or the force's work is
+   * no longer the stress power and parting bodies gain energy
+   * (light_node_gradients): the masses come first, then the forces with
+   * the light nodes known. MUSL and USF take the strain rate from
+   * transferred velocities and need no guard: one pass.
+   */
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::scatter_masses_then_forces(const Basis &basis)
+  {
+    const double light_mass = strain_rate_light_mass<Basis>();
+    if (light_mass > 0)
+      {
+        scatter_to_grid(basis, true, false);
+        grid_velocities_from_momentum(v_old);
+        scatter_to_grid(basis, false, true, light_mass);
+      }
+    else
+      {
+        scatter_to_grid(basis, true, true);
+        grid_velocities_from_momentum(v_old);
+      }
+  }
+
+
+  template <int dim>
+  std::array<double, 2>
+  TimeIntegrator<dim>::internal_work_and_stress_power(
+    const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
+      &w)
+  {
+    double work = 0, power = 0;
+    with_scene_basis([&](const auto &basis) {
+      using Basis = std::decay_t<decltype(basis)>;
+      scatter_masses_then_forces(basis);
+      double       *u = grid_velocity.get_values();
+      const double *g = grid_sums.get_values();
+      for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+        {
+          const Tensor<1, dim> w_i = w(grid.owned_node_coordinates(i));
+          for (unsigned int f = 0; f < n_fields; ++f)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                u[n_velocities * slot_of(i, f) + v_new + d] = w_i[d];
+                work += g[n_sums * slot_of(i, f) + force + d] * w_i[d];
+              }
+        }
+      grid_velocity.update_ghost_values();
+      const FieldLayout &l = points.layout();
+      for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+        const Tensor<2, dim> L =
+          velocity_gradient(s,
+                            grid_velocity.get_values() +
+                              n_velocities * field_of(q),
+                            n_fields * n_velocities,
+                            v_new,
+                            strain_rate_light_mass<Basis>());
+        power +=
+          q[l.volume] * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
+      });
+    });
+    return {
+      {Utilities::MPI::sum(work, comm), Utilities::MPI::sum(power, comm)}};
+  }
+
+
+  /**
+   * The strain rate with the guard, L(w) = sum_{I heavy} (w_I - w_p) (x)
+   * grad phi_I with w_p = sum_J phi_J w_J over all nodes, is linear in
+   * the nodal velocities w. Its adjoint, the force whose work
+   * sum_J f_J . w_J is -V sigma : L(w) for every w, gives node J the
+   * stress term V sigma with the gradient
+   *   grad phi_J [J heavy] + phi_J G,   G = sum_{K light} grad phi_K:
+   * the light nodes' gradients spread over the stencil by the weights.
+   * These still sum to zero (the gradients of all nodes do, and the
+   * weights sum to one), so momentum is kept; and a light node's force
+   * now scales with phi_J, as its mass does, so its force-updated
+   * velocity stays bounded. The basis' gradients with the guard on the
+   * strain rate's side only gave parting bodies energy: two disks +5 %
+   * (MUSL) and +9 % (USF), before the guard was kept to USL.
+   */
+  template <int dim>
+  template <typename Stencil, std::size_t n_nodes>
+  inline bool
+  TimeIntegrator<dim>::light_node_gradients(
+    const Stencil                       &s,
+    const double                        *u,
+    const unsigned int                   stride,
+    const double                         light_mass,
+    std::array<Tensor<1, dim>, n_nodes> &spread) const
+  {
+    std::array<bool, n_nodes> light;
+    Tensor<1, dim>            light_gradients;
+    bool                      any_light = false;
+    for (unsigned int v = 0; v < n_nodes; ++v)
+      {
+        light[v] = u[stride * s.nodes[v] + node_mass] <= light_mass;
+        if (light[v])
+          {
+            light_gradients += s.gradients[v];
+            any_light = true;
+          }
+      }
+    if (!any_light)
+      return false;
+    for (unsigned int v = 0; v < n_nodes; ++v)
+      spread[v] = s.weights[v] * light_gradients +
+                  (light[v] ? Tensor<1, dim>() : s.gradients[v]);
+    return true;
+  }
+
+
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::scatter_to_grid(const Basis &basis,
+                                       const bool   mass_and_momentum,
+                                       const bool   forces,
+                                       const double light_mass)
+  {
+    TimerOutput::Scope scope(timer, "P2G");
+    double            *g         = grid_sums.get_values();
+    const unsigned int n_entries = n_local_entries(grid_sums);
+    for (unsigned int i = 0; i < n_entries; i += n_sums)
+      {
+        if (mass_and_momentum)
+          for (unsigned int c = mass; c < force; ++c)
+            g[i + c] = 0;
+        if (forces)
+          for (unsigned int c = force; c < n_sums; ++c)
+            g[i + c] = 0;
+      }
+    const bool with_gradients = contact && mass_and_momentum;
+    if (with_gradients)
+      contact_data = 0.;
+
+    const FieldLayout   &l       = points.layout();
+    const Tensor<1, dim> gravity = prm.gravity;
+    const bool           apic    = prm.transfer == Transfer::apic;
+    // Local copies: the compiler cannot tell that the members do not change
+    // while the loop writes the nodal sums through a double *.
+    const bool with_body_forces         = has_body_forces;
+    double     power                    = 0; // of the body forces
+    const bool with_point_loads         = l.point_load != FieldLayout::absent;
+    const bool with_surface_loads       = l.load_moment != FieldLayout::absent;
+    const unsigned int  fields_per_node = n_fields;
+    const unsigned int *fields_of_body  = field_of_body.data();
+    // The nodal masses of the guard (light_mass > 0), ghosted.
+    const double *velocities = grid_velocity.get_values();
+    for (auto *f : body_forces)
+      if (f != nullptr)
+        f->set_time(t);
+    // Compiled once for one field and once for several, so that a scene
+    // without contact carries nothing of it.
+    // The guard's gradients (light_node_gradients), filled only where a
+    // stencil has a light node: scratch kept out of the point loop, which
+    // would otherwise zero it for every point.
+    std::array<Tensor<1, dim>, Basis::n_nodes> spread;
+    auto scatter = [&](auto several_fields) {
+      constexpr bool multi_field = decltype(several_fields)::value;
+      for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
+        const double m     = q[l.mass];
+        unsigned int field = 0;
+        if constexpr (multi_field)
+          field = fields_of_body[static_cast<unsigned int>(q[l.body])];
+        // The nodal sums of stencil node v, in this point's field.
+        auto sums_of = [&](const unsigned int v) {
+          if constexpr (multi_field)
+            return g + n_sums * (fields_per_node * s.nodes[v] + field);
+          else
+            return g + n_sums * s.nodes[v];
+        };
+        if (mass_and_momentum)
+          {
+            const Tensor<1, dim> mv = m * Fields::vector<dim>(q + l.velocity);
+            // APIC: the point's velocity field v_p + C_p (x - x_p), sampled
+            // at the node.
+            Tensor<2, dim> mC;
+            if (apic)
+              mC = m * Fields::tensor<dim>(q + l.affine_velocity);
+            for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+              {
+                double              *node = sums_of(v);
+                const Tensor<1, dim> p = apic ? mv + mC * s.node_offset(v) : mv;
+                node[mass] += s.weights[v] * m;
+                for (unsigned int d = 0; d < dim; ++d)
+                  node[momentum + d] += s.weights[v] * p[d];
+              }
+            // Contact normals of each field, and how many of its points'
+            // domains (a box of side V^(1/dim) around each) hold the node:
+            // where a body's surface lies on the grid.
+            if constexpr (multi_field)
+              if (with_gradients)
+                {
+                  const double half_side =
+                    0.5 * (1 + 1e-9) * std::pow(q[l.volume], 1. / dim);
+                  // A rigid body's normal is the gradient of its volume,
+                  // not of its mass: its density must not change how it
+                  // acts (with 1e-300 the products underflowed and the
+                  // floor stopped acting).
+                  const double weight =
+                    density_of_body[static_cast<unsigned int>(q[l.body])] > 0
+                      ? m
+                      : q[l.volume];
+                  for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                    {
+                      double *data = contact_data.begin() +
+                                     MultiFieldContact<dim>::data_per_field *
+                                       slot_of(s.nodes[v], field);
+                      for (unsigned int d = 0; d < dim; ++d)
+                        data[d] += weight * s.gradients[v][d];
+                      const Tensor<1, dim> r      = s.node_offset(v);
+                      bool                 inside = true;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        inside = inside && std::abs(r[d]) <= half_side;
+                      data[dim] += inside;
+                    }
+                }
+          }
+        if (forces)
+          {
+            // Internal force with the current volume and Cauchy stress.
+            const SymmetricTensor<2, dim> Vsigma =
+              q[l.volume] * Fields::symmetric<dim>(q + l.stress);
+            const bool guarded =
+              light_mass > 0 &&
+              light_node_gradients(s,
+                                   velocities +
+                                     (multi_field ? n_velocities * field : 0),
+                                   multi_field ? fields_per_node * n_velocities
+                                               : n_velocities,
+                                   light_mass,
+                                   spread);
+            const auto    &gradients = guarded ? spread : s.gradients;
+            Tensor<1, dim> mg        = m * gravity;
+            if (with_body_forces)
+              {
+                const Tensor<1, dim> b = body_force(q);
+                check_load(b.norm(),
+                           q[l.body],
+                           "body force",
+                           p->get_location());
+                const Tensor<1, dim> mb = m * b;
+                mg += mb;
+                power += mb * Fields::vector<dim>(q + l.velocity);
+              }
+            if (with_point_loads)
+              mg += Fields::vector<dim>(q + l.point_load);
+            auto add_forces = [&](const auto &stress_term) {
+              for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                {
+                  const Tensor<1, dim> f =
+                    s.weights[v] * mg - stress_term * gradients[v];
+                  double *node = sums_of(v) + force;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    node[d] += f[d];
+                }
+            };
+            // A surface load F acts at the surface, d from the point:
+            // F phi(x + d) = F phi(x) + (F (x) d) grad phi(x) to first
+            // order (exact within a cell for the linear basis), so the
+            // moment F (x) d joins the stress term; the point load holds
+            // F phi(x). The quadratic B-spline takes phi(x + d) itself
+            // where its functions reach x + d as one piece each
+            // (Basis::weights_at): to first order its node beyond the
+            // surface, which holds 1/16 of a point's mass, is 1/32 F out of
+            // balance with the top points' stress, and pure FLIP let that
+            // grow until the energy guard stopped the loaded column; exact,
+            // it balances (0.028-0.064 over the schemes and transfers).
+            // The other bases measure better to first order (cubic
+            // B-spline 0.040-0.047 against 0.046-0.126; uGIMP 0.020 against
+            // 0.034, whose weight averages over the point's domain).
+            if (with_surface_loads)
+              {
+                const Tensor<2, dim> moment =
+                  Fields::tensor<dim>(q + l.load_moment);
+                const Tensor<1, dim> d =
+                  Fields::vector<dim>(q + l.surface_offset);
+                std::array<double, Basis::n_nodes> at_surface;
+                if (moment.norm_square() > 0 &&
+                    basis.weights_at(s, d, at_surface))
+                  {
+                    // moment = F (x) d
+                    const Tensor<1, dim> F = moment * d / (d * d);
+                    for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                      {
+                        double *node = sums_of(v) + force;
+                        for (unsigned int c = 0; c < dim; ++c)
+                          node[c] += (at_surface[v] - s.weights[v]) * F[c];
+                      }
+                    add_forces(Vsigma);
+                  }
+                else if (!guarded)
+                  add_forces(Tensor<2, dim>(Vsigma) - moment);
+                else
+                  {
+                    // The load's moment is no stress: the basis' gradients.
+                    add_forces(Vsigma);
+                    for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                      {
+                        const Tensor<1, dim> f    = moment * s.gradients[v];
+                        double              *node = sums_of(v) + force;
+                        for (unsigned int d = 0; d < dim; ++d)
+                          node[d] += f[d];
+                      }
+                  }
+              }
+            else
+              add_forces(Vsigma);
+          }
+      });
+    };
+    if (n_fields > 1)
+      scatter(std::true_type());
+    else
+      scatter(std::false_type());
+    if (forces)
+      body_force_power = power;
+    grid_sums.compress(VectorOperation::add);
+    if (with_gradients)
+      contact_data.compress(VectorOperation::add);
+    if (forces && virtual_fluid)
+      add_fluid_forces(basis);
+  }
+
+
+  /**
+   * The virtual stress method (cl-mpm): the force of a pressure p on the
+   * surface of a body, f_I = -int_dOmega p n phi_I dA, is by the divergence
+   * theorem -int_Omega (p grad phi_I + phi_I grad p) dV, an integral over
+   * the body that the points evaluate like the internal force, with the
+   * "virtual stress" -p I. It needs no surface: the surface is wherever
+   * the points end. For a node whose support lies inside the body the exact
+   * integral vanishes, so only nodes whose support the wetted bodies do
+   * not fill (to 0.1 %) get it; inside, the point quadrature would only
+   * add its error, which the pressure's kink at the fluid's level makes
+   * large. The threshold must be tight: a node just inside the surface
+   * has its support's edge outside, a sliver of little volume but a
+   * share of the surface force that is not small, most of all with the
+   * quadratic B-spline (uncovered volume ~ d^3 / 6, weight on the surface
+   * ~ d^2 / 2, d the sliver's width in cells). A point lattice that is
+   * undisturbed covers an inner node's support exactly (the midpoint rule
+   * integrates each piece of the basis, the errors cancel), so 0.1 %
+   * leaves only distortion to tell apart. Floating block, draft error at
+   * 16 / 32 cells: quadratic B-spline 0.50 % / 0.11 % with this mask
+   * (7.3 % / 4.4 % with 1 %, 8.4 % / 0.74 % with every node); linear
+   * 0.05 %, uGIMP (32) 0.08 %, as with 1 %; 19 % with a 10 % threshold.
+   */
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::add_fluid_forces(const Basis &basis)
+  {
+    TimerOutput::Scope scope(timer, "virtual fluid");
+    const FieldLayout &l = points.layout();
+    fluid_volume         = 0.;
+    for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+      if (virtual_fluid->wets(q[l.body]))
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          fluid_volume.local_element(s.nodes[v]) += s.weights[v] * q[l.volume];
+    });
+    fluid_volume.compress(VectorOperation::add);
+    fluid_volume.update_ghost_values();
+
+    auto on_surface = [&](const unsigned int node) {
+      return fluid_volume.local_element(node) <
+             (1. - 1e-3) * support_volume.local_element(node);
+    };
+    fluid_force = 0.;
+    virtual_fluid->set_time(t);
+    for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
+      if (!virtual_fluid->wets(q[l.body]))
+        return;
+      bool near_surface = false;
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        near_surface = near_surface || on_surface(s.nodes[v]);
+      if (!near_surface)
+        return;
+      Tensor<1, dim> grad_p;
+      const double   pressure =
+        virtual_fluid->pressure(p->get_location(), grad_p);
+      if (pressure == 0 && grad_p.norm_square() == 0)
+        return;
+      const double V = q[l.volume];
+      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+        if (on_surface(s.nodes[v]))
+          {
+            const Tensor<1, dim> f =
+              -V * (pressure * s.gradients[v] + s.weights[v] * grad_p);
+            for (unsigned int d = 0; d < dim; ++d)
+              fluid_force.local_element(dim * slot_of(s.nodes[v], field_of(q)) +
+                                        d) += f[d];
+          }
+    });
+    fluid_force.compress(VectorOperation::add);
+
+    double *g         = grid_sums.get_values();
+    fluid_force_total = Tensor<1, dim>();
+    for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double f = fluid_force.local_element(dim * i + d);
+          g[n_sums * i + force + d] += f;
+          fluid_force_total[d] += f;
+        }
+  }
+
+
+  // Members of TimeIntegrator defined here, instantiated for each dimension
+  // and basis (the class itself is instantiated in time_integrator.cc).
+#define MPM_INSTANTIATE_BASIS(dim, Basis)                           \
+  template void TimeIntegrator<dim>::scatter_to_grid(const Basis &, \
+                                                     const bool,    \
+                                                     const bool,    \
+                                                     const double); \
+  template void TimeIntegrator<dim>::scatter_masses_then_forces(const Basis &);
+#define MPM_INSTANTIATE(dim)                                                   \
+  MPM_FOR_EACH_BASIS(MPM_INSTANTIATE_BASIS, dim)                               \
+  template std::array<double, 2>                                               \
+  TimeIntegrator<dim>::internal_work_and_stress_power(                         \
+    const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)> \
+      &);
+  MPM_INSTANTIATE(1)
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
+#undef MPM_INSTANTIATE_BASIS
+} // namespace mpm
