@@ -17,6 +17,235 @@
 
 namespace mpm
 {
+  namespace
+  {
+    using DCI = DataComponentInterpretation::DataComponentInterpretation;
+    constexpr DCI scalar = DataComponentInterpretation::component_is_scalar;
+    constexpr DCI vector =
+      DataComponentInterpretation::component_is_part_of_vector;
+    constexpr DCI tensor =
+      DataComponentInterpretation::component_is_part_of_tensor;
+
+    /// What a field's entry reads to make its arrays: the points' layout,
+    /// their bodies, and whether the particles go to HDF5.
+    template <int dim>
+    struct FieldContext
+    {
+      const FieldLayout                      &l;
+      const std::vector<BodyParameters<dim>> &bodies;
+      bool                                    hdf5;
+    };
+
+    template <int dim>
+    using PointIterator =
+      typename Particles::ParticleHandler<dim>::particle_iterator;
+
+    /// A one-value field computed from a point's properties by @p value.
+    template <int dim, typename Value>
+    PointField<dim>
+    scalar_field(const std::string &name, const Value value)
+    {
+      return {name, 1, scalar, [value](const PointIterator<dim> &p, double *v) {
+                v[0] = value(p->get_properties().data());
+              }};
+    }
+
+    /// One point field of 'Output/fields': its name there, what the help
+    /// text says of it, whether the default list has it, and the arrays it
+    /// adds to the particle files.
+    template <int dim>
+    struct PointFieldEntry
+    {
+      const char *name;
+      const char *note;
+      bool        by_default;
+      std::function<void(const FieldContext<dim> &,
+                         std::vector<PointField<dim>> &)>
+        add;
+    };
+
+    /**
+     * Every point field a scene can ask for, in the order of the files. A
+     * new field is one entry here (and, if it needs data the points do
+     * not store yet, its request in point_fields_needed).
+     */
+    template <int dim>
+    const std::vector<PointFieldEntry<dim>> &
+    point_field_table()
+    {
+      using It = PointIterator<dim>;
+      using F  = FieldContext<dim>;
+      using P  = std::vector<PointField<dim>>;
+      static const std::vector<PointFieldEntry<dim>> table = {
+        {"velocity",
+         "",
+         true,
+         [](const F &c, P &out) {
+           out.push_back(
+             {"velocity", dim, vector, [&l = c.l](const It &p, double *v) {
+                for (unsigned int d = 0; d < dim; ++d)
+                  v[d] = p->get_properties()[l.velocity + d];
+              }});
+         }},
+        {"displacement",
+         "",
+         true,
+         [](const F &c, P &out) {
+           out.push_back(
+             {"displacement", dim, vector, [&l = c.l](const It &p, double *v) {
+                for (unsigned int d = 0; d < dim; ++d)
+                  v[d] = p->get_location()[d] -
+                         p->get_properties()[l.initial_position + d];
+              }});
+         }},
+        {"stress",
+         "",
+         true,
+         [](const F &c, P &out) {
+           const FieldLayout &l = c.l;
+           // deal.II's HDF5 filter writes a field of more than 3
+           // components as a vector of 3 (measured: the 2D stress tensor
+           // came out as 3 columns), so in HDF5 the stress goes as its
+           // independent components.
+           if (!c.hdf5)
+             {
+               out.push_back(
+                 {"stress", dim * dim, tensor, [&l](const It &p, double *v) {
+                    const auto s = Fields::symmetric<dim>(
+                      p->get_properties().data() + l.stress);
+                    for (unsigned int i = 0; i < dim; ++i)
+                      for (unsigned int j = 0; j < dim; ++j)
+                        v[i * dim + j] = s[i][j];
+                  }});
+               return;
+             }
+           const std::vector<std::pair<unsigned int, unsigned int>> components =
+             dim == 1
+               ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0}}
+             : dim == 2
+               ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0},
+                                                                    {1, 1},
+                                                                    {0, 1}}
+               : std::vector<std::pair<unsigned int, unsigned int>>{
+                   {0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+           for (const auto &[i, j] : components)
+             out.push_back(
+               scalar_field<dim>(std::string("stress_") + "xyz"[i] + "xyz"[j],
+                                 [&l, i = i, j = j](const double *q) {
+                                   return Fields::symmetric<dim>(
+                                     q + l.stress)[i][j];
+                                 }));
+         }},
+        {"J",
+         "",
+         true,
+         [](const F &c, P &out) {
+           out.push_back(scalar_field<dim>(
+             "J", [&l = c.l, &bodies = c.bodies](const double *q) {
+               return q[l.volume] * bodies[q[l.body]].density / q[l.mass];
+             }));
+         }},
+        {"mass",
+         "",
+         true,
+         [](const F &c, P &out) {
+           out.push_back(scalar_field<dim>("mass", [&l = c.l](const double *q) {
+             return q[l.mass];
+           }));
+         }},
+        {"volume",
+         "",
+         true,
+         [](const F &c, P &out) {
+           out.push_back(scalar_field<dim>(
+             "volume", [&l = c.l](const double *q) { return q[l.volume]; }));
+         }},
+        {"body",
+         "",
+         true,
+         [](const F &c, P &out) {
+           out.push_back(scalar_field<dim>("body", [&l = c.l](const double *q) {
+             return q[l.body];
+           }));
+         }},
+        {"plastic strain",
+         "equivalent, 0 for elastic bodies",
+         false,
+         [](const F &c, P &out) {
+           out.push_back(
+             scalar_field<dim>("plastic_strain", [&l = c.l](const double *q) {
+               return l.plastic_strain == FieldLayout::absent
+                        ? 0.
+                        : q[l.plastic_strain];
+             }));
+         }},
+        {"opening",
+         "the log volume a cohesionless body gained at zero stress, where "
+         "its grains parted; 0 elsewhere",
+         false,
+         [](const F &c, P &out) {
+           out.push_back(
+             scalar_field<dim>("opening", [&l = c.l](const double *q) {
+               return l.opening == FieldLayout::absent ? 0. : q[l.opening];
+             }));
+         }},
+        {"damage",
+         "d, 0 for bodies without damage",
+         false,
+         [](const F &c, P &out) {
+           out.push_back(
+             scalar_field<dim>("damage", [&l = c.l](const double *q) {
+               return l.damage == FieldLayout::absent ? 0. : q[l.damage];
+             }));
+         }},
+        {"pressure",
+         "-tr(sigma)/3, with the out-of-plane stress in 2D",
+         false,
+         [](const F &c, P &out) {
+           out.push_back(scalar_field<dim>(
+             "pressure", [&l = c.l, &bodies = c.bodies](const double *q) {
+               return -trace(
+                        bodies[q[l.body]].material->cauchy_stress_3d(q, l)) /
+                      3.;
+             }));
+         }},
+        {"von Mises stress",
+         "sqrt(3/2 s:s), likewise",
+         false,
+         [](const F &c, P &out) {
+           out.push_back(scalar_field<dim>(
+             "von_Mises_stress",
+             [&l = c.l, &bodies = c.bodies](const double *q) {
+               const SymmetricTensor<2, 3> s =
+                 deviator(bodies[q[l.body]].material->cauchy_stress_3d(q, l));
+               return std::sqrt(1.5 * (s * s));
+             }));
+         }}};
+      return table;
+    }
+
+
+    /// The names of the point fields, joined by @p separator; only those
+    /// of the default list if @p defaults_only, and with each one's note
+    /// in parentheses if @p with_notes.
+    std::string
+    point_field_names(const std::string &separator,
+                      const bool         defaults_only,
+                      const bool         with_notes)
+    {
+      std::string names;
+      for (const auto &entry : point_field_table<3>())
+        if (entry.by_default || !defaults_only)
+          {
+            names += (names.empty() ? "" : separator) + entry.name;
+            if (with_notes && entry.note[0] != '\0')
+              names += std::string(" (") + entry.note + ")";
+          }
+      return names;
+    }
+  } // namespace
+
+
   void
   OutputParameters::declare_parameters(ParameterHandler &prm)
   {
@@ -32,20 +261,12 @@ namespace mpm
                       "Steps are shortened to land on output times.");
     prm.declare_entry(
       "fields",
-      "velocity, displacement, stress, J, mass, volume, body",
-      Patterns::MultipleSelection("velocity|displacement|stress|J|mass|volume|"
-                                  "body|plastic strain|opening|damage|"
-                                  "pressure|"
-                                  "von Mises stress"),
-      "Particle fields written to VTU, any of: velocity, "
-      "displacement, stress, J, mass, volume, body, plastic strain "
-      "(equivalent, 0 for elastic bodies), opening (the log volume a "
-      "cohesionless body gained at zero stress, where its grains parted; 0 "
-      "elsewhere), damage (d, 0 for bodies "
-      "without damage), pressure (-tr(sigma)/3, with the "
-      "out-of-plane stress in 2D), von Mises stress (sqrt(3/2 s:s), "
-      "likewise). 'displacement' makes every point store its initial "
-      "position; the last two are computed at output only.");
+      point_field_names(", ", true, false),
+      Patterns::MultipleSelection(point_field_names("|", false, false)),
+      "Particle fields written to VTU, any of: " +
+        point_field_names(", ", false, true) +
+        ". 'displacement' makes every point store its initial position; "
+        "the last two are computed at output only.");
     prm.declare_entry(
       "particle format",
       "VTU",
@@ -532,100 +753,11 @@ namespace mpm
   std::vector<typename Output<dim>::PointField>
   Output<dim>::point_fields() const
   {
-    using DCI        = DataComponentInterpretation::DataComponentInterpretation;
-    const DCI vector = DataComponentInterpretation::component_is_part_of_vector;
-    const DCI tensor = DataComponentInterpretation::component_is_part_of_tensor;
-    const DCI scalar = DataComponentInterpretation::component_is_scalar;
-    const FieldLayout      &l = points.layout();
+    const FieldContext<dim> context{points.layout(), points.bodies(), prm.hdf5};
     std::vector<PointField> fields;
-    const auto              add = [&](const std::string &name,
-                         const std::string &field,
-                         const unsigned int n,
-                         const DCI          kind,
-                         auto               values) {
-      if (prm.writes(name))
-        fields.push_back({field, n, kind, values});
-    };
-    using Point = typename Particles::ParticleHandler<dim>::particle_iterator;
-    add("velocity", "velocity", dim, vector, [&l](const Point &p, double *v) {
-      for (unsigned int d = 0; d < dim; ++d)
-        v[d] = p->get_properties()[l.velocity + d];
-    });
-    add("displacement",
-        "displacement",
-        dim,
-        vector,
-        [&l](const Point &p, double *v) {
-          for (unsigned int d = 0; d < dim; ++d)
-            v[d] = p->get_location()[d] -
-                   p->get_properties()[l.initial_position + d];
-        });
-    // deal.II's HDF5 filter writes a field of more than 3 components as a
-    // vector of 3 (measured: the 2D stress tensor came out as 3 columns),
-    // so in HDF5 the stress goes as its independent components.
-    if (prm.hdf5)
-      {
-        const std::vector<std::pair<unsigned int, unsigned int>> components =
-          dim == 1 ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0}}
-          : dim == 2
-            ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0},
-                                                                 {1, 1},
-                                                                 {0, 1}}
-            : std::vector<std::pair<unsigned int, unsigned int>>{
-                {0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
-        for (const auto &[i, j] : components)
-          add("stress",
-              std::string("stress_") + "xyz"[i] + "xyz"[j],
-              1,
-              scalar,
-              [&l, i = i, j = j](const Point &p, double *v) {
-                v[0] = Fields::symmetric<dim>(p->get_properties().data() +
-                                              l.stress)[i][j];
-              });
-      }
-    else
-      add(
-        "stress", "stress", dim * dim, tensor, [&l](const Point &p, double *v) {
-          const auto s =
-            Fields::symmetric<dim>(p->get_properties().data() + l.stress);
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              v[i * dim + j] = s[i][j];
-        });
-    const auto scalar_of =
-      [&](const std::string &name, const std::string &field, auto value) {
-        add(name, field, 1, scalar, [value](const Point &p, double *v) {
-          v[0] = value(p->get_properties().data());
-        });
-      };
-    const auto &bodies = points.bodies();
-    scalar_of("J", "J", [&l, &bodies](const double *q) {
-      return q[l.volume] * bodies[q[l.body]].density / q[l.mass];
-    });
-    scalar_of("mass", "mass", [&l](const double *q) { return q[l.mass]; });
-    scalar_of("volume", "volume", [&l](const double *q) {
-      return q[l.volume];
-    });
-    scalar_of("body", "body", [&l](const double *q) { return q[l.body]; });
-    scalar_of("plastic strain", "plastic_strain", [&l](const double *q) {
-      return l.plastic_strain == FieldLayout::absent ? 0. : q[l.plastic_strain];
-    });
-    scalar_of("opening", "opening", [&l](const double *q) {
-      return l.opening == FieldLayout::absent ? 0. : q[l.opening];
-    });
-    scalar_of("damage", "damage", [&l](const double *q) {
-      return l.damage == FieldLayout::absent ? 0. : q[l.damage];
-    });
-    scalar_of("pressure", "pressure", [&l, &bodies](const double *q) {
-      return -trace(bodies[q[l.body]].material->cauchy_stress_3d(q, l)) / 3.;
-    });
-    scalar_of("von Mises stress",
-              "von_Mises_stress",
-              [&l, &bodies](const double *q) {
-                const SymmetricTensor<2, 3> s =
-                  deviator(bodies[q[l.body]].material->cauchy_stress_3d(q, l));
-                return std::sqrt(1.5 * (s * s));
-              });
+    for (const auto &entry : point_field_table<dim>())
+      if (prm.writes(entry.name))
+        entry.add(context, fields);
     return fields;
   }
 

@@ -54,6 +54,25 @@ namespace mpm
 
 
   /**
+   * A point field as the particle files hold it: its name in the files,
+   * its values per point and how they read (scalar, vector or tensor), and
+   * how they are computed from a point. The fields 'Output/fields' can ask
+   * for are one table in output.cc.
+   */
+  template <int dim>
+  struct PointField
+  {
+    std::string                                              name;
+    unsigned int                                             n_values;
+    DataComponentInterpretation::DataComponentInterpretation kind;
+    std::function<
+      void(const typename Particles::ParticleHandler<dim>::particle_iterator &,
+           double *)>
+      values;
+  };
+
+
+  /**
    * Everything written to disk: particles as VTU (+PVTU, PVD), optionally
    * the grid, and statistics.csv. A file is only written from a state that
    * passed the integrator's checks, so after a failed run the files on
@@ -96,19 +115,7 @@ namespace mpm
     double
     output_time_after(const double t) const;
 
-    /// A point field of 'Output/fields': its name in the files, its
-    /// values per point and how they read (scalar, vector or tensor), and
-    /// how they are computed from a point.
-    struct PointField
-    {
-      std::string                                              name;
-      unsigned int                                             n_values;
-      DataComponentInterpretation::DataComponentInterpretation kind;
-      std::function<void(
-        const typename Particles::ParticleHandler<dim>::particle_iterator &,
-        double *)>
-        values;
-    };
+    using PointField = mpm::PointField<dim>;
     /// The fields 'Output/fields' asks for, in the order of the files.
     std::vector<PointField>
     point_fields() const;
