@@ -22,8 +22,10 @@ namespace mpm
       fields.initial_position =
         fields.initial_position || body.body_force || body.is_displaced();
     fields.deformation_gradient = integrator.basis == BasisType::cpgimp;
-    fields.affine_velocity      = integrator.transfer == Transfer::apic;
-    fields.macro_step           = integrator.macro_time_step > 0;
+    with_transfer(integrator.transfer, [&](auto transfer) {
+      fields.affine_velocity = decltype(transfer)::stores_affine_velocity;
+    });
+    fields.macro_step = integrator.macro_time_step > 0;
     for (const auto &body : bodies)
       {
         fields.surface_area = fields.surface_area || body.has_surface_loads();

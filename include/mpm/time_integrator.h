@@ -461,28 +461,6 @@ namespace mpm
                          const unsigned int                   stride,
                          const double                         light_mass,
                          std::array<Tensor<1, dim>, n_nodes> &spread) const;
-    /// Is the node (its entry in a nodal array) lighter than the
-    /// small-mass threshold? Its velocity is then left out of the
-    /// gradients (velocity_gradient, discount_light_node_increments).
-    bool
-    is_light(const double *node) const
-    {
-      return node[node_mass] <= min_nodal_mass;
-    }
-    /// APIC's C_p (in @p C, from v_new) with the linear basis: the light
-    /// nodes' force increments replaced by the point's, @p dv_point, and
-    /// massless nodes' velocities by the point's velocity @p v_point (see
-    /// there).
-    template <typename Stencil, std::size_t n_nodes>
-    void
-    discount_light_node_increments(
-      const Stencil                             &s,
-      const double                              *u,
-      const unsigned int                         stride,
-      const std::array<Tensor<1, dim>, n_nodes> &affine,
-      const Tensor<1, dim>                      &v_point,
-      const Tensor<1, dim>                      &dv_point,
-      Tensor<2, dim>                            &C) const;
     /// Store L, update volume and F by I + dt L; note a failure if the
     /// point would invert.
     template <typename Iterator>

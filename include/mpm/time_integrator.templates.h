@@ -7,66 +7,13 @@
 // virtual calls and every kernel is inlined into its loop.
 #include <mpm/parameters.h>
 #include <mpm/time_integrator.h>
+#include <mpm/transfer/transfers.h>
 
 #include <algorithm>
 #include <sstream>
 
 namespace mpm
 {
-  /**
-   * APIC's C_p = sum_I v_I (x) a_I (Jiang et al. 2015) from the nodal
-   * velocities at @p slot of the interleaved array @p u (node stride
-   * @p stride); @p affine is scratch for the basis' affine weights a_I.
-   * Every node counts, light ones too: only then does the transfer keep
-   * angular momentum exactly (tests/rigid_rotation.cc). The gather and the
-   * macro step's reset form C_p here.
-   */
-  template <int dim, typename Basis>
-  inline DEAL_II_ALWAYS_INLINE Tensor<2, dim>
-                               apic_velocity_gradient(const Basis                                &basis,
-                                                      const typename Basis::Stencil              &s,
-                                                      const double                               *u,
-                                                      const unsigned int                          stride,
-                                                      const unsigned int                          slot,
-                                                      std::array<Tensor<1, dim>, Basis::n_nodes> &affine)
-  {
-    basis.affine_weights(s, affine);
-    Tensor<2, dim> C;
-    for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-      C += outer_product(Fields::vector<dim>(u + stride * s.nodes[v] + slot),
-                         affine[v]);
-    return C;
-  }
-
-
-  /**
-   * The gradient of an affine velocity field v_p + C (x - x_p) once the
-   * material it describes has moved with it for @p dt: the velocities stay
-   * with the material while the separations between its points grow by
-   * I + dt C, so in the positions reached the gradient is
-   * C (I + dt C)^{-1} (in 1D C / (1 + dt C): a free cloud spreads as
-   * 1 / t). The transfers themselves would keep C as it is, which is only
-   * right where forces hold it there; where none act (a point whose
-   * stress is zero, e.g. cohesionless and separated) the field would
-   * stretch the point at a constant rate, its J growing exponentially
-   * instead of linearly: a single point sliding on a friction face was torn
-   * apart (J > 1000 within 0.2 s) instead of stopping after
-   * v^2 / (2 mu g). The gather stores this, with the step's dt, as the C_p
-   * the next transfer to the grid uses. If I + dt C is singular the step
-   * is unstable and its strain rate stops the run; C is then kept.
-   */
-  template <int dim>
-  inline Tensor<2, dim>
-  advected_affine_velocity(const Tensor<2, dim> &C, const double dt)
-  {
-    Tensor<2, dim> stretch = dt * C;
-    for (unsigned int d = 0; d < dim; ++d)
-      stretch[d][d] += 1.;
-    const double det = determinant(stretch);
-    return det > 0 ? Tensor<2, dim>(C * invert(stretch)) : C;
-  }
-
-
   /// The length of the local array of a nodal vector: owned and ghost
   /// entries (loops that clear or copy all of them).
   inline unsigned int

@@ -153,7 +153,6 @@ namespace mpm
 
     const FieldLayout   &l       = points.layout();
     const Tensor<1, dim> gravity = prm.gravity;
-    const bool           apic    = prm.transfer == Transfer::apic;
     // Local copies: the compiler cannot tell that the members do not change
     // while the loop writes the nodal sums through a double *.
     const bool with_body_forces         = has_body_forces;
@@ -173,7 +172,8 @@ namespace mpm
     // stencil has a light node: scratch kept out of the point loop, which
     // would otherwise zero it for every point.
     std::array<Tensor<1, dim>, Basis::n_nodes> spread;
-    auto scatter = [&](auto several_fields) {
+    auto scatter = [&](auto transfer, auto several_fields) {
+      using Transfer             = decltype(transfer);
       constexpr bool multi_field = decltype(several_fields)::value;
       for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
         const double m     = q[l.mass];
@@ -190,15 +190,13 @@ namespace mpm
         if (mass_and_momentum)
           {
             const Tensor<1, dim> mv = m * Fields::vector<dim>(q + l.velocity);
-            // APIC: the point's velocity field v_p + C_p (x - x_p), sampled
-            // at the node.
-            Tensor<2, dim> mC;
-            if (apic)
-              mC = m * Fields::tensor<dim>(q + l.affine_velocity);
+            const Tensor<2, dim> mC =
+              Transfer::template affine_momentum<dim>(m, q, l);
             for (unsigned int v = 0; v < Basis::n_nodes; ++v)
               {
                 double              *node = sums_of(v);
-                const Tensor<1, dim> p = apic ? mv + mC * s.node_offset(v) : mv;
+                const Tensor<1, dim> p =
+                  Transfer::momentum_at_node(mv, mC, s, v);
                 node[mass] += s.weights[v] * m;
                 for (unsigned int d = 0; d < dim; ++d)
                   node[momentum + d] += s.weights[v] * p[d];
@@ -327,10 +325,14 @@ namespace mpm
           }
       });
     };
-    if (n_fields > 1)
-      scatter(std::true_type());
-    else
-      scatter(std::false_type());
+    // Compiled for each transfer as well: the PIC/FLIP loop carries nothing
+    // of APIC's.
+    with_transfer(prm.transfer, [&](auto transfer) {
+      if (n_fields > 1)
+        scatter(transfer, std::true_type());
+      else
+        scatter(transfer, std::false_type());
+    });
     if (forces)
       body_force_power = power;
     grid_sums.compress(VectorOperation::add);
