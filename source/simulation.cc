@@ -187,39 +187,8 @@ namespace mpm
       checkpoint.empty()
         ? nullptr
         : std::make_unique<RunState>(RunState::read(checkpoint + "/state.txt"));
-    // A checkpoint is only read by the scene that wrote it (checked before
-    // deal.II loads a grid that does not match, which it cannot report).
-    auto throw_scene_differs = [&]() {
-      // With the physics the same (check_restart), only the output fields
-      // change what the points store.
-      const auto fields = resume->scene.find("Output/fields");
-      if (fields != resume->scene.end() &&
-          fields->second != scene_entries.at("Output/fields"))
-        throw InputError("Output/fields",
-                         scene_entries.at("Output/fields"),
-                         "needs other point data than the checkpoint "
-                         "stores; restart with its 'Output/fields' = '" +
-                           fields->second +
-                           "' (the other output settings may change)");
-      throw InputError("--restart",
-                       restart,
-                       "was written by a scene with another grid or other "
-                       "point fields; restart with the scene that wrote it "
-                       "(end time, output and checkpoint settings may "
-                       "change)");
-    };
     if (resume != nullptr)
       check_restart(*resume, checkpoint);
-    if (resume != nullptr)
-      {
-        double n_cells = 1;
-        for (const auto n : grid_parameters.n_cells)
-          n_cells *= n;
-        if (resume->get("grid_cells") != n_cells)
-          throw_scene_differs();
-      }
-    // Balance the ranks by the material points each cell will hold (or
-    // take the checkpoint's partition and points).
     // The memory of the program itself (its libraries, MPI), before the
     // scene's data: a constant per rank, which timing.csv lists apart.
     {
@@ -228,6 +197,75 @@ namespace mpm
       baseline_bytes = Utilities::MPI::sum(double(memory.VmRSS) * 1024., comm);
       library_bytes  = resident_file_bytes();
     }
+    set_up_grid_and_points(resume.get(), checkpoint);
+    set_up_integrator(resume.get());
+    set_up_output(resume.get());
+    setup_peak_bytes = peak_memory_bytes();
+    print_scene_summary();
+    refuse_endless_run();
+    if (resume == nullptr)
+      write_output(wall.wall_time());
+    else
+      {
+        // The checkpoint was taken right after an output: the force meters
+        // were reset there.
+        last_output_time     = resume->get("last_output_time");
+        next_checkpoint_time = resume->get("checkpoint_next_time");
+        const double t       = integrator->time();
+        for (auto *reporter : force_reporters)
+          reporter->mean_force_since_last_call(t, comm);
+        pcout << "  restarted from '" << checkpoint << "' at t = " << t
+              << ", step " << integrator->step_number() << std::endl;
+      }
+    first_step           = integrator->step_number();
+    last_checkpoint_wall = wall.wall_time();
+    run_time_loop(wall);
+  }
+
+
+  /**
+   * A checkpoint is only read by the scene that wrote it (checked before
+   * deal.II loads a grid that does not match, which it cannot report).
+   * With the physics the same (check_restart), only the output fields
+   * change what the points store.
+   */
+  template <int dim>
+  void
+  Simulation<dim>::throw_scene_differs(const RunState &resume) const
+  {
+    const auto fields = resume.scene.find("Output/fields");
+    if (fields != resume.scene.end() &&
+        fields->second != scene_entries.at("Output/fields"))
+      throw InputError("Output/fields",
+                       scene_entries.at("Output/fields"),
+                       "needs other point data than the checkpoint "
+                       "stores; restart with its 'Output/fields' = '" +
+                         fields->second +
+                         "' (the other output settings may change)");
+    throw InputError("--restart",
+                     restart,
+                     "was written by a scene with another grid or other "
+                     "point fields; restart with the scene that wrote it "
+                     "(end time, output and checkpoint settings may "
+                     "change)");
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::set_up_grid_and_points(const RunState    *resume,
+                                          const std::string &checkpoint)
+  {
+    if (resume != nullptr)
+      {
+        double n_cells = 1;
+        for (const auto n : grid_parameters.n_cells)
+          n_cells *= n;
+        if (resume->get("grid_cells") != n_cells)
+          throw_scene_differs(*resume);
+      }
+    // Balance the ranks by the material points each cell will hold (or
+    // take the checkpoint's partition and points).
     std::optional<TimerOutput::Scope> setup_scope;
     setup_scope.emplace(*timer, "setup: grid");
     grid = std::make_unique<BackgroundGrid<dim>>(
@@ -247,8 +285,6 @@ namespace mpm
                           output_parameters.writes("displacement") ||
                             Verification<dim>::needs_initial_position(
                               verification_parameters));
-    const std::vector<unsigned int> slip_slot =
-      wall_slip_slots(rigid_wall_parameters);
     setup_scope.reset();
     setup_scope.emplace(*timer, "setup: points");
     points = std::make_unique<MaterialPoints<dim>>(*grid,
@@ -256,31 +292,38 @@ namespace mpm
                                                    fields,
                                                    comm);
     if (resume == nullptr)
-      points->generate(bodies_may_overlap,
-                       {{integrator_parameters.J_min,
-                         integrator_parameters.J_max}});
-    else
       {
-        // The scene must store the same fields (deal.II would read the
-        // points' data misaligned, or fail).
-        if (resume->get("point_properties") != points->layout().n_properties)
-          throw_scene_differs();
-        points->restore(resume->get("minimum_point_mass"));
-        // A run that never rebalanced had the partition of the initial
-        // work estimate, which comes back bit for bit; after rebalancing,
-        // the partition of the points as they are is the nearest (the
-        // history then agrees to round-off).
-        n_rebalances = resume->values.count("rebalances") > 0
-                         ? resume->get("rebalances")
-                         : 0;
-        if (n_rebalances > 0)
-          grid->repartition(points->handler());
-        else
-          grid->restore_partition(points->handler());
+        points->generate(bodies_may_overlap,
+                         {{integrator_parameters.J_min,
+                           integrator_parameters.J_max}});
+        return;
       }
-    setup_scope.reset();
+    // The scene must store the same fields (deal.II would read the
+    // points' data misaligned, or fail).
+    if (resume->get("point_properties") != points->layout().n_properties)
+      throw_scene_differs(*resume);
+    points->restore(resume->get("minimum_point_mass"));
+    // A run that never rebalanced had the partition of the initial
+    // work estimate, which comes back bit for bit; after rebalancing,
+    // the partition of the points as they are is the nearest (the
+    // history then agrees to round-off).
+    n_rebalances =
+      resume->values.count("rebalances") > 0 ? resume->get("rebalances") : 0;
+    if (n_rebalances > 0)
+      grid->repartition(points->handler());
+    else
+      grid->restore_partition(points->handler());
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::set_up_integrator(const RunState *resume)
+  {
     velocity_region =
       std::make_unique<VelocityRegion<dim>>(velocity_region_parameters, *grid);
+    const std::vector<unsigned int> slip_slot =
+      wall_slip_slots(rigid_wall_parameters);
     for (unsigned int w = 0; w < rigid_wall_parameters.size(); ++w)
       rigid_walls.push_back(std::make_unique<RigidWall<dim>>(
         rigid_wall_parameters[w], grid->min_cell_size(), slip_slot[w]));
@@ -322,6 +365,13 @@ namespace mpm
       force_reporters.push_back(wall.get());
     force_reporters.push_back(virtual_fluid.get());
     force_reporters.push_back(contact.get());
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::set_up_output(const RunState *resume)
+  {
     std::vector<std::string> columns = verification->columns();
     for (const auto *reporter : force_reporters)
       for (const auto &c : reporter->columns())
@@ -351,27 +401,20 @@ namespace mpm
                                            integrator_parameters.gravity,
                                            columns,
                                            comm,
-                                           resume.get());
-    setup_peak_bytes   = peak_memory_bytes();
-    print_scene_summary();
-    refuse_endless_run();
-    if (resume == nullptr)
-      write_output(wall.wall_time());
-    else
-      {
-        // The checkpoint was taken right after an output: the force meters
-        // were reset there.
-        last_output_time     = resume->get("last_output_time");
-        next_checkpoint_time = resume->get("checkpoint_next_time");
-        const double t       = integrator->time();
-        for (auto *reporter : force_reporters)
-          reporter->mean_force_since_last_call(t, comm);
-        pcout << "  restarted from '" << checkpoint << "' at t = " << t
-              << ", step " << integrator->step_number() << std::endl;
-      }
-    first_step           = integrator->step_number();
-    last_checkpoint_wall = wall.wall_time();
+                                           resume);
+  }
 
+
+  /**
+   * The time loop: steps of at most the time to the next output or the
+   * end, each after balancing the ranks, an output (and a checkpoint if
+   * due) at each output time, the progress line. A run that stops names
+   * where its last good output is.
+   */
+  template <int dim>
+  void
+  Simulation<dim>::run_time_loop(const Timer &wall)
+  {
     const double end_time   = integrator_parameters.end_time;
     double       last_print = 0;
     const double start      = wall.wall_time();
@@ -423,15 +466,6 @@ namespace mpm
   }
 
 
-  /**
-   * A run that would take more than max_steps steps, or whose output
-   * interval is shorter than its time step for more than max_extra_frames
-   * frames (each step would be cut to the interval and write a frame), is
-   * a mistake in the scene: refused before
-   * the first step, with the estimate and what sets the step. The estimate
-   * is the run's length over its first step; a step that shrinks later is
-   * the run's own business (progress lines show it).
-   */
   template <int dim>
   void
   Simulation<dim>::refuse_endless_run() const

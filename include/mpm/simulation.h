@@ -38,10 +38,31 @@ namespace mpm
                MPI_Comm           comm,
                const std::string &restart = "");
 
+    /// Set up the scene (or take it back from a checkpoint) and run it
+    /// to its end time.
     void
     run();
 
   private:
+    /// The grid, partitioned by the points each cell will hold, and the
+    /// bodies' points (or the checkpoint's partition and points).
+    void
+    set_up_grid_and_points(const RunState    *resume,
+                           const std::string &checkpoint);
+    /// The boundary conditions, contact, the integrator, the verification
+    /// and the energy guard (their state from @p resume if given), and the
+    /// list of force reporters.
+    void
+    set_up_integrator(const RunState *resume);
+    /// The statistics columns of the scene and the output.
+    void
+    set_up_output(const RunState *resume);
+    /// Step to the end time, with output, checkpoints and progress.
+    void
+    run_time_loop(const Timer &wall);
+    /// Refuse a checkpoint written by another scene (grid or point fields).
+    [[noreturn]] void
+    throw_scene_differs(const RunState &resume) const;
     void
     print_scene_summary() const;
     void
