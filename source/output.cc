@@ -50,6 +50,20 @@ namespace mpm
               }};
     }
 
+    /// The maker of a field the points store as one number at @p slot
+    /// (mass, volume, body): the value is written as it is stored.
+    template <int dim>
+    std::function<void(const FieldContext<dim> &,
+                       std::vector<PointField<dim>> &)>
+    stored_scalar(const char *name, unsigned int FieldLayout::*slot)
+    {
+      return [name, slot](const FieldContext<dim>      &c,
+                          std::vector<PointField<dim>> &out) {
+        out.push_back(scalar_field<dim>(
+          name, [&l = c.l, slot](const double *q) { return q[l.*slot]; }));
+      };
+    }
+
     /// One point field of 'Output/fields': its name there, what the help
     /// text says of it, whether the default list has it, and the arrays it
     /// adds to the particle files.
@@ -145,29 +159,12 @@ namespace mpm
                return q[l.volume] * bodies[q[l.body]].density / q[l.mass];
              }));
          }},
-        {"mass",
-         "",
-         true,
-         [](const F &c, P &out) {
-           out.push_back(scalar_field<dim>("mass", [&l = c.l](const double *q) {
-             return q[l.mass];
-           }));
-         }},
+        {"mass", "", true, stored_scalar<dim>("mass", &FieldLayout::mass)},
         {"volume",
          "",
          true,
-         [](const F &c, P &out) {
-           out.push_back(scalar_field<dim>(
-             "volume", [&l = c.l](const double *q) { return q[l.volume]; }));
-         }},
-        {"body",
-         "",
-         true,
-         [](const F &c, P &out) {
-           out.push_back(scalar_field<dim>("body", [&l = c.l](const double *q) {
-             return q[l.body];
-           }));
-         }},
+         stored_scalar<dim>("volume", &FieldLayout::volume)},
+        {"body", "", true, stored_scalar<dim>("body", &FieldLayout::body)},
         {"plastic strain",
          "equivalent, 0 for elastic bodies",
          false,
