@@ -1,0 +1,171 @@
+// The size of the step: the CFL condition over the points' wave and flow
+// speeds (and the walls', regions' and rigid bodies' prescribed speeds),
+// the viscous limit, and on the way the per-point check that stops an
+// unstable run with a diagnosis (J outside its bounds, a non-finite
+// velocity, stress or volume). initial_step says which limit sets the
+// first step, for the log.
+#include <mpm/time_integrator.h>
+#include <mpm/time_integrator.templates.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  double
+  TimeIntegrator<dim>::stable_time_step()
+  {
+    TimerOutput::Scope scope(timer, "check and CFL");
+    const FieldLayout &l = points.layout();
+    // max(c_p + |v_p|) <= max c_p + max |v_p|: the bound costs no square
+    // root per point and gives a time step that is, if anything, smaller.
+    double max_c2 = 0, max_v2 = 0;
+    for (const auto &p : points.handler())
+      {
+        const double                 *q = p.get_properties().data();
+        const Tensor<1, dim>          v = Fields::vector<dim>(q + l.velocity);
+        const SymmetricTensor<2, dim> s = Fields::symmetric<dim>(q + l.stress);
+        const unsigned int            b = q[l.body];
+        const double                  inverse_density = q[l.volume] / q[l.mass];
+        // A stiffness that grows with the pressure (the Tait fluid) counts
+        // the point's pressure; under tension the modulus at rest bounds
+        // it from above. Only such bodies pay for it (a branch the same
+        // for a body's points).
+        double modulus = wave_modulus_of_body[b];
+        if (wave_modulus_pressure_slope_of_body[b] > 0)
+          modulus += wave_modulus_pressure_slope_of_body[b] *
+                     std::max(-trace(s) / dim, 0.);
+        // With mass scaling the waves see s rho.
+        const double c2 = modulus *
+                          (fixed_inverse_density_of_body[b] > 0
+                             ? fixed_inverse_density_of_body[b]
+                             : inverse_density) /
+                          prm.mass_scaling;
+        const double v2 = v.norm_square();
+        const double J  = inverse_density * density_of_body[b];
+        // J = 0 marks a rigid body's points (no guard there).
+        if ((J < prm.J_min && J > 0) || J > prm.J_max)
+          if (failure.empty())
+            {
+              std::ostringstream msg;
+              msg << "step " << n_steps << ", t = " << t << ": material point "
+                  << p.get_id() << " of body " << b << " at ("
+                  << p.get_location() << ") has J = V / V0 = " << J
+                  << ", outside 'Simulation/J bounds' [" << prm.J_min << ", "
+                  << prm.J_max << "]: it was "
+                  << (J < 1 ? "crushed" : "torn apart")
+                  << "; the run is unstable (try a smaller CFL number, MUSL, "
+                     "a smooth basis) or the bounds are too tight";
+              failure = msg.str();
+            }
+        // One test catches NaN/inf in velocity, stress and volume.
+        if (!std::isfinite(c2 + v2 + (s * s) + q[l.volume]) && failure.empty())
+          {
+            std::ostringstream msg;
+            msg << "step " << n_steps << ", t = " << t << ": material point "
+                << p.get_id() << " of body " << q[l.body] << " at ("
+                << p.get_location() << ") has a non-finite "
+                << (!std::isfinite(v2)        ? "velocity"
+                    : !std::isfinite((s * s)) ? "stress"
+                                              : "density (volume)")
+                << "; the run is unstable (try a smaller CFL number, MUSL, "
+                   "or damping)";
+            failure = msg.str();
+          }
+        max_c2 = std::max(max_c2, c2);
+        max_v2 = std::max(max_v2, v2);
+      }
+    raise_if_any_failed(failure, comm);
+    // A moving rigid wall meets the material at its own speed plus the
+    // material's: a step that lets the wall pass a cell puts points deep
+    // inside it, whose penalty force then throws them out (a wall at
+    // 10 m/s through the two disks moved 2 cells a step).
+    double wall_speed = 0;
+    for (const RigidWall<dim> *wall : rigid_walls)
+      wall_speed = std::max(wall_speed, wall->speed());
+    // A velocity region drives the material it holds at its speed, and a
+    // rigid body moves at its prescribed one: from the first step on,
+    // before the points have them (a rigid body's points start at its
+    // 'initial velocity').
+    double prescribed_speed = velocity_region.speed();
+    if (contact)
+      {
+        contact->set_time(t);
+        for (unsigned int r = 0; r < contact->rigid_bodies().size(); ++r)
+          prescribed_speed =
+            std::max(prescribed_speed, contact->rigid_velocity_of(r).norm());
+      }
+    const double max_speed =
+      std::sqrt(Utilities::MPI::max(max_c2, comm)) +
+      std::max(std::sqrt(Utilities::MPI::max(max_v2, comm)), prescribed_speed) +
+      wall_speed;
+    // Newmark's gamma > 1/2 shrinks the stable range of omega dt from 2 to
+    // sqrt(2 / gamma) (benchmarks/verification/newmark_amplification.py).
+    const double newmark_factor =
+      prm.newmark_gamma > 0.5 ? std::sqrt(0.5 / prm.newmark_gamma) : 1.;
+    return prm.cfl_number * newmark_factor *
+           std::min(grid.min_cell_size() / max_speed, viscous_time_step);
+  }
+
+
+  template <int dim>
+  std::pair<double, std::string>
+  TimeIntegrator<dim>::initial_step()
+  {
+    std::ostringstream why;
+    if (prm.macro_time_step > 0 && prm.substeps > 0)
+      {
+        why << "'Simulation/macro time step' = " << prm.macro_time_step
+            << " s over 'Simulation/substeps' = " << prm.substeps;
+        return {prm.macro_time_step / prm.substeps, why.str()};
+      }
+    const double limit = stable_time_step();
+    if (prm.fixed_time_step > 0)
+      return {prm.fixed_time_step, "'Simulation/time step'"};
+    if (prm.macro_time_step > 0 && prm.macro_time_step < limit)
+      return {prm.macro_time_step, "'Simulation/macro time step'"};
+    const auto &body = points.bodies();
+    if (prm.cfl_number * viscous_time_step <= limit * (1 + 1e-12))
+      {
+        const unsigned int b = viscous_body;
+        why << "the viscous limit rho h^2 / (2 dim eta) of " << body[b].name
+            << " ('" << body[b].material_name << "', viscosity "
+            << body[b].material->viscosity()
+            << " Pa s, 'density' = " << body[b].density << ")";
+        return {limit, why.str()};
+      }
+    // The CFL condition: name the body whose waves are fastest at rest
+    // (a huge initial speed shows in the speed itself).
+    unsigned int b_fastest = 0;
+    double       fastest   = 0;
+    for (unsigned int b = 0; b < body.size(); ++b)
+      if (wave_modulus_of_body[b] / body[b].density > fastest)
+        fastest = wave_modulus_of_body[b] / body[b].density, b_fastest = b;
+    const auto &b = body[b_fastest];
+    why << "the CFL condition 'Simulation/CFL number' * h / max(c_p + |v_p|) "
+           "with h = "
+        << grid.min_cell_size() << " m; the fastest waves at rest, "
+        << std::sqrt(fastest) << " m/s, are those of " << b.name << " ('"
+        << b.material_name << "'"
+        << (b.material->stiffness_parameters().empty()
+              ? ""
+              : ", " + b.material->stiffness_parameters())
+        << ", 'density' = " << b.density << ")";
+    return {prm.macro_time_step > 0 ? std::min(prm.macro_time_step, limit)
+                                    : limit,
+            why.str()};
+  }
+
+
+  // Members of TimeIntegrator defined here, instantiated for each dimension
+  // (the class itself is instantiated in time_integrator.cc).
+#define MPM_INSTANTIATE(dim)                               \
+  template double TimeIntegrator<dim>::stable_time_step(); \
+  template std::pair<double, std::string> TimeIntegrator<dim>::initial_step();
+  MPM_INSTANTIATE(1)
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
+} // namespace mpm
