@@ -4,7 +4,6 @@
 #include <mpm/time_integrator.templates.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <sstream>
 
 namespace mpm
