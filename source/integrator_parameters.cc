@@ -121,7 +121,19 @@ namespace mpm
                       "0.99",
                       Patterns::Anything(),
                       "PIC/FLIP blend alpha in [0, 1]: 0 is PIC (dissipative, "
-                      "stable), 1 is FLIP (conserves energy, noisier).");
+                      "stable), 1 is FLIP (conserves energy, noisier). It "
+                      "acts once per step, so its damping grows as the step "
+                      "shrinks; see 'PIC relaxation time'.");
+    prm.declare_entry(
+      "PIC relaxation time",
+      "0",
+      Patterns::Anything(),
+      "FLIP only: the time in s over which a point's velocity relaxes to "
+      "the grid's (PIC), in place of 'FLIP fraction': each step blends with "
+      "alpha = exp(-dt / time). The damping then does not depend on the "
+      "time step, and in a shear band a cell wide it shrinks with the "
+      "grid; a longer time damps less (benchmarks/granular/README.md). "
+      "0: off (the FLIP fraction).");
     prm.declare_entry("gravity",
                       "0",
                       Patterns::Anything(),
@@ -229,8 +241,10 @@ namespace mpm
     basis           = basis_names.value(prm.get("basis"));
     transfer        = transfer_names.value(prm.get("transfer"));
     flip_fraction   = Parse::bounded_double(prm, s, "FLIP fraction", 0, 1);
-    gravity         = Parse::vector<dim>(prm, s, "gravity");
-    damping         = Parse::bounded_double(prm, s, "damping", 0, 1e300);
+    pic_relaxation_time =
+      Parse::bounded_double(prm, s, "PIC relaxation time", 0, 1e300);
+    gravity = Parse::vector<dim>(prm, s, "gravity");
+    damping = Parse::bounded_double(prm, s, "damping", 0, 1e300);
     local_damping =
       Parse::bounded_double(prm, s, "local damping", 0, 1, false, true);
     mass_scaling = Parse::bounded_double(prm, s, "mass scaling", 1, 1e12);
@@ -265,6 +279,10 @@ namespace mpm
                        prm.get("Newmark gamma"),
                        "other than 0.5 needs 'Simulation/update scheme = "
                        "USL' and 'Simulation/transfer = FLIP'");
+    if (pic_relaxation_time > 0 && transfer != Transfer::flip)
+      throw InputError("Simulation/PIC relaxation time",
+                       prm.get("PIC relaxation time"),
+                       "must be 0 unless 'Simulation/transfer = FLIP'");
     if (macro_time_step > 0 && fixed_time_step > 0)
       throw InputError("Simulation/time step",
                        prm.get("time step"),

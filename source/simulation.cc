@@ -769,7 +769,8 @@ namespace mpm
   Simulation<dim>::warn_of_pic_viscosity() const
   {
     const auto &p = integrator_parameters;
-    if (p.transfer == Transfer::apic || p.flip_fraction >= 0.999)
+    if (p.transfer == Transfer::apic || p.flip_fraction >= 0.999 ||
+        p.pic_relaxation_time > 0)
       return;
     for (unsigned int b = 0; b < body_parameters.size(); ++b)
       {
@@ -844,7 +845,13 @@ namespace mpm
     if (p.transfer == Transfer::apic)
       s << "APIC";
     else
-      s << "PIC/FLIP with FLIP fraction " << p.flip_fraction;
+      {
+        if (p.pic_relaxation_time > 0)
+          s << "PIC/FLIP with PIC relaxation time " << p.pic_relaxation_time
+            << " s";
+        else
+          s << "PIC/FLIP with FLIP fraction " << p.flip_fraction;
+      }
     if (p.f_bar)
       s << ", F-bar";
     if (p.local_damping > 0)

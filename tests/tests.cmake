@@ -421,6 +421,16 @@ foreach(basis "quadratic B-spline" "cubic B-spline")
     COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/granular/sheared_layer.py
       --exe $<TARGET_FILE:dealii-mpm> --cells 4 --check -s "Simulation/basis=${basis}")
 endforeach()
+#    The same layer at two CFL numbers with FLIP and a PIC relaxation
+#    time: the damping is a rate, so the shear the layer keeps does not
+#    depend on the time step (measured: within 0.0015 m/s at CFL 0.5 and
+#    0.125; allowed 0.01). With 'FLIP fraction = 0.999', a share per step,
+#    the smaller step takes the shear out three times faster (0.253 against
+#    0.110 m/s at t = 0.04 s) and this test fails.
+add_test(NAME sheared_layer_pic_relaxation_cfl
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/granular/sheared_layer.py
+    --exe $<TARGET_FILE:dealii-mpm> --cells 4 --cfl 0.5,0.125 --check
+    -s "Simulation/transfer=FLIP" -s "Simulation/PIC relaxation time=0.1")
 #    The collapse of a column of aluminium rods (Bui et al. 2008; MUSL,
 #    FLIP 0.999, quadratic B-spline, h = 5 mm): the toe (where the deposit
 #    is a rod, 1.5 mm, thick) within 0.42-0.50 m (measured 0.44-0.46; here
@@ -1175,6 +1185,12 @@ mpm_test(bad_newmark_gamma PRM block_settling.prm EXIT 1
 mpm_test(bad_newmark_gamma_musl PRM block_settling.prm EXIT 1
   ARGS -s "Simulation/Newmark gamma=0.6" -s "Simulation/update scheme=MUSL"
   ERROR "parameter 'Simulation/Newmark gamma' = '0.6': other than 0.5 needs 'Simulation/update scheme = USL' and 'Simulation/transfer = FLIP'")
+mpm_test(bad_pic_relaxation_time_apic PRM block_settling.prm EXIT 1
+  ARGS -s "Simulation/PIC relaxation time=0.1" -s "Simulation/transfer=APIC"
+  ERROR "parameter 'Simulation/PIC relaxation time' = '0.1': must be 0 unless 'Simulation/transfer = FLIP'")
+mpm_test(bad_pic_relaxation_time PRM block_settling.prm EXIT 1
+  ARGS -s "Simulation/PIC relaxation time=-1"
+  ERROR "parameter 'Simulation/PIC relaxation time' = '-1': must be >= 0")
 mpm_test(bad_least_squares_with_contact PRM ../benchmarks/contact/rolling_disk.prm EXIT 1
   ARGS -s "Simulation/macro time step=0.001" -s "Simulation/macro reconstruction=least squares"
   ERROR "parameter 'Simulation/macro reconstruction' = 'least squares': works on one velocity field; a scene with bodies in 'Contact/bodies' or rigid bodies needs 'APIC'")

@@ -8,6 +8,7 @@
 #include <mpm/material_points.h>
 #include <mpm/options.h>
 
+#include <cmath>
 #include <string>
 
 namespace mpm
@@ -48,13 +49,22 @@ namespace mpm
     void
     parse_parameters(ParameterHandler &prm);
 
-    double          end_time;
-    double          cfl_number;
-    double          fixed_time_step; ///< 0: from the CFL condition
-    UpdateScheme    scheme;
-    BasisType       basis;
-    Transfer        transfer;
-    double          flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
+    double       end_time;
+    double       cfl_number;
+    double       fixed_time_step; ///< 0: from the CFL condition
+    UpdateScheme scheme;
+    BasisType    basis;
+    Transfer     transfer;
+    double       flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
+    /// FLIP: the PIC share as a rate, alpha = exp(-dt / time); 0: off.
+    double pic_relaxation_time;
+    /// The FLIP share of a step of size @p dt.
+    double
+    flip_fraction_of_step(const double dt) const
+    {
+      return pic_relaxation_time > 0 ? std::exp(-dt / pic_relaxation_time)
+                                     : flip_fraction;
+    }
     Tensor<1, dim>  gravity;
     double          damping;       ///< mass-proportional, in 1/s
     double          local_damping; ///< Cundall's alpha, in [0, 1)

@@ -36,7 +36,7 @@ namespace mpm
     const double      *u_all = grid_velocity.get_values();
     // Newmark's gamma (USL, FLIP): see grid_velocities_after_forces.
     const GatherState                          state{dt,
-                            prm.flip_fraction,
+                            prm.flip_fraction_of_step(dt),
                             kinematics && prm.newmark_gamma != 0.5,
                             1. / (prm.newmark_gamma + 0.5),
                             min_nodal_mass};
