@@ -756,12 +756,13 @@ namespace mpm
    * FLIP's PIC share relaxes every point's velocity towards the grid's at
    * the rate (1 - FLIP fraction) / dt. Across a shear band a cell or two
    * wide that is a viscous stress ~ rho c dv (1 - FLIP fraction) / CFL,
-   * which does not fall as the grid is refined, and in a frictional
-   * material it is of the order of the band's strength: a granular
-   * column (a = 0.5, 32 cells) runs out 0.41 / 0.54 / 0.79 for FLIP
-   * fractions 0.95 / 0.99 / 0.999 and 0.78 with APIC, and with 0.99 it
-   * still climbs at 128 cells; with 0.999 it agrees with APIC within 4 % at
-   * 64 cells, and the Bui collapse converges (benchmarks/granular/README.md).
+   * which does not fall as the grid is refined and grows as the step
+   * shrinks, and in a frictional material it is of the order of the band's
+   * strength: a granular column (a = 0.5, 32 cells) runs out 0.41 / 0.54 /
+   * 0.79 for FLIP fractions 0.95 / 0.99 / 0.999, and the Bui collapse's toe
+   * with 0.999 is 0.505 / 0.455 / 0.420 m at CFL 0.5 / 0.25 / 0.125 on
+   * either grid tried. A relaxation time makes the share a rate: the toe
+   * is then 0.495 m at CFL 0.5 and 0.125 (benchmarks/granular/README.md).
    * Not wrong enough to stop, so said at the start, with the remedy.
    */
   template <int dim>
@@ -769,7 +770,7 @@ namespace mpm
   Simulation<dim>::warn_of_pic_viscosity() const
   {
     const auto &p = integrator_parameters;
-    if (p.transfer == Transfer::apic || p.flip_fraction >= 0.999 ||
+    if (p.transfer == Transfer::apic || p.flip_fraction == 1 ||
         p.pic_relaxation_time > 0)
       return;
     for (unsigned int b = 0; b < body_parameters.size(); ++b)
@@ -780,10 +781,11 @@ namespace mpm
           pcout << "  warning: body " << b << " is frictional (" << name
                 << ") and the transfer is FLIP with a PIC share of "
                 << 1 - p.flip_fraction
-                << ": it acts on shear bands like a viscosity that does not "
-                   "shrink with the grid and shortens granular runouts; "
-                   "'Simulation/FLIP fraction = 0.999' converges "
-                   "(benchmarks/granular/README.md)"
+                << " per step: it acts on shear bands like a viscosity that "
+                   "does not shrink with the grid and grows as the step "
+                   "shrinks, and it shortens granular runouts; set "
+                   "'Simulation/PIC relaxation time' (a share per second: "
+                   "benchmarks/granular/README.md)"
                 << std::endl;
       }
   }
