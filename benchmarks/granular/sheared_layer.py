@@ -19,7 +19,7 @@ share takes it out faster on every grid (a numerical viscosity).
       depend on the time step; FLIP 0.999 takes the shear out 3 times
       faster at 0.125 than at 0.5)
 """
-import argparse, os, sys
+import argparse, math, os, sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
@@ -27,14 +27,42 @@ from scene_runner import overrides, run_scene, sweep_arguments  # noqa: E402
 H, MU, G = 0.005, 0.3, 9.81
 
 
-def run(exe, k, extra):
+def expected_deceleration(incline):
+    """While the layer slides down a face inclined at @p incline degrees,
+    the face takes mu times the weight's normal part and gravity drives it
+    on with the tangential part."""
+    theta = math.radians(incline)
+    return G * (MU * math.cos(theta) - math.sin(theta))
+
+
+def run(exe, k, extra, incline=0):
+    """The layer over @p k cells; on a face inclined at @p incline degrees
+    (gravity tilted, the layer sliding down it) the run lasts until well
+    after the layer should have stopped, on a grid long enough for that."""
     h = H / k
+    length, end = 0.5, 0.12
+    tilt = []
+    if incline != 0:
+        theta = math.radians(incline)
+        # The top moves at 1.5 m/s, and points it carries over the front
+        # land on the face at that speed: they stop last and furthest.
+        d = expected_deceleration(incline)
+        end = 1.2 * 1.5 / d
+        length = 0.3 + 1.2 * 1.5 ** 2 / (2 * d)
+        tilt = ["-s", "Simulation/gravity=%.17g, %.17g" %
+                (G * math.sin(theta), -G * math.cos(theta)),
+                "-s", "Simulation/constants=rho=2650, g=%.17g, K0=0.5, "
+                      "H=0.005" % (G * math.cos(theta)),
+                "-s", "Simulation/end time=%.17g" % end]
     r = run_scene(exe, "granular/sheared_layer.prm", [
-        "-s", "Grid/upper corner=0.5, %.17g" % (H + 4 * h),
-        "-s", "Grid/cells=%d, %d" % (round(0.5 / h), k + 4)] + extra,
-        frame="all", fields="velocity", frame_fields=("velocity",))
+        "-s", "Grid/upper corner=%.17g, %.17g" % (length, H + 4 * h),
+        "-s", "Grid/cells=%d, %d" % (round(length / h), k + 4)] + tilt +
+        extra, frame="all", fields="velocity", frame_fields=("velocity",))
     speed = [float(row["momentum_x"]) / float(row["mass"]) for row in r.rows]
     deceleration = (speed[1] - speed[5]) / 0.08
+    if incline != 0:
+        return deceleration, float(r.rows[-1]["kinetic_energy"]) / \
+            float(r.rows[0]["kinetic_energy"])
     shear = []
     for points, fields in zip(r.points, r.fields):
         v = fields["velocity"]
@@ -52,8 +80,18 @@ def main():
     parser.add_argument("--cells", default="1,2,4,8")
     parser.add_argument("--cfl", default="",
                         help="CFL numbers to compare, comma-separated")
+    parser.add_argument("--shear", default="0.24,0.30",
+                        help="the range --check asks of the shear at "
+                             "t = 0.04 s, or 'none'")
+    parser.add_argument("--incline", type=float, default=0,
+                        help="the face's slope in degrees, below its "
+                             "friction angle (atan 0.3 = 16.7): the layer "
+                             "slides down it, decelerating at g (mu cos - "
+                             "sin), and must come to rest")
     parser.add_argument("--check", action="store_true")
     a = parser.parse_args()
+    if a.incline != 0:
+        return inclined(a)
     cfls = [float(x) for x in a.cfl.split(",")] if a.cfl else [None]
     print("cells_across,cfl,deceleration,mu_g,error,shear_0.02,shear_0.04,"
           "shear_0.06,shear_0.08,shear_0.1")
@@ -72,7 +110,9 @@ def main():
             ok = ok and abs(error) <= 0.02
             shears.append(shear)
         if cfl is None:
-            ok = ok and 0.24 <= shears[0][1] <= 0.30
+            if a.shear != "none":
+                low, high = [float(x) for x in a.shear.split(",")]
+                ok = ok and low <= shears[0][1] <= high
         else:
             spread = max(max(s[i] for s in shears) - min(s[i] for s in shears)
                          for i in range(len(shears[0])))
@@ -83,6 +123,28 @@ def main():
         print("FAILED: the deceleration is off by more than 2 % of mu g, or "
               "the shear at t = 0.04 s is outside [0.24, 0.30] m/s, or the "
               "shears at different CFL numbers differ by more than 0.01 m/s")
+        sys.exit(1)
+
+
+def inclined(a):
+    """The layer sliding down an inclined face: its deceleration while it
+    slides, and its kinetic energy at the end over the initial (it must be
+    at rest: the face holds it, tan(incline) < mu)."""
+    expected = expected_deceleration(a.incline)
+    print("cells_across,incline,deceleration,expected,error,"
+          "kinetic_energy_left")
+    ok = expected > 0
+    for k in [int(x) for x in a.cells.split(",")]:
+        deceleration, final = run(a.exe, k, overrides(a), a.incline)
+        error = deceleration / expected - 1
+        print("%d,%g,%.4f,%.4f,%.2e,%.2e" % (k, a.incline, deceleration,
+                                             expected, error, final),
+              flush=True)
+        ok = ok and abs(error) <= 0.02 and final <= 1e-3
+    if a.check and not ok:
+        print("FAILED: the deceleration is off by more than 2 %, or the "
+              "layer is not at rest at the end (kinetic energy above 1e-3 "
+              "of the initial)")
         sys.exit(1)
 
 
