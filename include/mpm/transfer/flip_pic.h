@@ -16,7 +16,9 @@ namespace mpm
    * The PIC/FLIP blend ('Simulation/transfer = FLIP'): a point gives the
    * nodes its velocity, and takes back alpha (v_p + dv) + (1 - alpha) v,
    * the FLIP update by the grid's velocity increment dv blended with the
-   * PIC one, the grid velocity v at the point (alpha = 'FLIP fraction').
+   * PIC one, the grid velocity v at the point (alpha = 'FLIP fraction',
+   * or exp(-dt / 'PIC relaxation time'): a share per step damps more the
+   * smaller the step, a rate does not; IntegratorParameters).
    *
    * A transfer is a class with the members below, chosen at compile time
    * like the basis (with_transfer()): the scatter and the gather are

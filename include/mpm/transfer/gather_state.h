@@ -9,7 +9,7 @@ namespace mpm
   {
     /// The step: APIC carries C_p over it (advected_affine_velocity).
     double dt;
-    /// PIC/FLIP: alpha, the FLIP share (0 = PIC, 1 = FLIP).
+    /// PIC/FLIP: alpha, the FLIP share of this step (0 = PIC, 1 = FLIP).
     double flip_fraction;
     /// PIC/FLIP with Newmark's gamma != 1/2 (USL): the nodes hold
     /// v_old + (gamma + 1/2) dt a, and the velocity update is
