@@ -12,6 +12,7 @@ import argparse, time
 from scene_runner import run_scene
 DEFAULTS = ["-s", "Simulation/basis=linear", "-s", "Simulation/update scheme=USL",
             "-s", "Simulation/transfer=FLIP", "-s", "Simulation/FLIP fraction=0.99",
+            "-s", "Simulation/PIC relaxation time=0",
             "-s", "Simulation/CFL number=0.5"]
 
 # name: (scene, overrides of the coarse version)
