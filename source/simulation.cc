@@ -760,9 +760,10 @@ namespace mpm
    * shrinks, and in a frictional material it is of the order of the band's
    * strength: a granular column (a = 0.5, 32 cells) runs out 0.41 / 0.54 /
    * 0.79 for FLIP fractions 0.95 / 0.99 / 0.999, and the Bui collapse's toe
-   * with 0.999 is 0.505 / 0.455 / 0.420 m at CFL 0.5 / 0.25 / 0.125 on
-   * either grid tried. A relaxation time makes the share a rate: the toe
-   * is then 0.495 m at CFL 0.5 and 0.125 (benchmarks/granular/README.md).
+   * with 0.999 is 0.505 / 0.455 / 0.420 m at CFL 0.5 / 0.25 / 0.125 at
+   * h = 5 mm (0.510 / 0.455 / 0.433 at 2.5 mm). A relaxation time makes
+   * the share a rate: the toe is then 0.495 m at CFL 0.5 and 0.125
+   * (benchmarks/granular/README.md).
    * Not wrong enough to stop, so said at the start, with the remedy.
    */
   template <int dim>
@@ -846,14 +847,11 @@ namespace mpm
       << basis_names.name(p.basis) << ", transfer ";
     if (p.transfer == Transfer::apic)
       s << "APIC";
+    else if (p.pic_relaxation_time > 0)
+      s << "PIC/FLIP with PIC relaxation time " << p.pic_relaxation_time
+        << " s";
     else
-      {
-        if (p.pic_relaxation_time > 0)
-          s << "PIC/FLIP with PIC relaxation time " << p.pic_relaxation_time
-            << " s";
-        else
-          s << "PIC/FLIP with FLIP fraction " << p.flip_fraction;
-      }
+      s << "PIC/FLIP with FLIP fraction " << p.flip_fraction;
     if (p.f_bar)
       s << ", F-bar";
     if (p.local_damping > 0)

@@ -6,9 +6,12 @@ Prints one CSV row per run: the cells across the layer, the mean velocity's
 deceleration between t = 0.02 and 0.1 s against mu g (the floor takes mu
 times the weight while the layer slides), and the velocity difference
 between the layer's upper and lower half at t = 0.02, ..., 0.1 s. The
-difference is the shear the layer's own friction takes out; APIC converges
-to it (about 0.39, 0.27, 0.17, 0.09, 0.03 m/s, README.md), FLIP with a PIC
-share takes it out faster on every grid (a numerical viscosity).
+difference is the shear the layer's own friction takes out. FLIP with a PIC
+relaxation time converges to about 0.42, 0.32, 0.23, 0.16, 0.11 m/s (4 to
+16 cells), APIC approaches it from below (0.40, 0.27, 0.19, 0.12, 0.06 at
+16 cells), and FLIP with a PIC share per step takes it out faster on every
+grid, faster still at a smaller step (README.md). The default --shear range
+is APIC's 4-cell answer, a guard on it, not the continuum's value.
 
   sheared_layer.py --exe build/dealii-mpm --cells 1,2,4,8 [-s ...]
   sheared_layer.py --exe ... --cells 4 --check      a ctest: deceleration
@@ -83,11 +86,14 @@ def run(exe, k, extra, incline=0, rigid_wall=False):
                   "-s", "Simulation/constants=rho=2650, g=%.17g, K0=0.5, "
                         "H=0.005" % (G * math.cos(theta)),
                   "-s", "Simulation/end time=%.17g" % end]
+    # The inclined run needs only statistics.csv, not its many frames.
+    frames = dict(frame="all", fields="velocity",
+                  frame_fields=("velocity",)) if incline == 0 else {}
     r = run_scene(exe, "granular/sheared_layer.prm", [
         "-s", "Grid/upper corner=%.17g, %.17g" % (length, y0 + H + 4 * h),
         "-s", "Grid/cells=%d, %d" % (round(length / h),
                                      k + 4 + round(y0 / h))] + scene +
-        extra, frame="all", fields="velocity", frame_fields=("velocity",))
+        extra, **frames)
     speed = [float(row["momentum_x"]) / float(row["mass"]) for row in r.rows]
     deceleration = (speed[1] - speed[5]) / 0.08
     if incline != 0:
@@ -170,9 +176,10 @@ def main():
                   % spread)
             ok = ok and spread <= 0.01
     if a.check and not ok:
-        print("FAILED: the deceleration is off by more than 2 % of mu g, or "
-              "the shear at t = 0.04 s is outside [0.24, 0.30] m/s, or the "
-              "shears at different CFL numbers differ by more than 0.01 m/s")
+        print("FAILED: the deceleration is off mu g by more than 2 % (5 % "
+              "on a rigid wall, whose force ratio must be mu within 2 %), "
+              "or the shear at t = 0.04 s is outside --shear, or the shears "
+              "at different CFL numbers differ by more than 0.01 m/s")
         sys.exit(1)
 
 

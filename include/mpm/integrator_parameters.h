@@ -48,23 +48,23 @@ namespace mpm
     declare_parameters(ParameterHandler &prm);
     void
     parse_parameters(ParameterHandler &prm);
-
-    double       end_time;
-    double       cfl_number;
-    double       fixed_time_step; ///< 0: from the CFL condition
-    UpdateScheme scheme;
-    BasisType    basis;
-    Transfer     transfer;
-    double       flip_fraction; ///< alpha: 0 = PIC, 1 = FLIP
-    /// FLIP: the PIC share as a rate, alpha = exp(-dt / time); 0: off.
-    double pic_relaxation_time;
-    /// The FLIP share of a step of size @p dt.
+    /// The FLIP share alpha of a step of size @p dt: the FLIP fraction, or
+    /// exp(-dt / PIC relaxation time), a share per second.
     double
     flip_fraction_of_step(const double dt) const
     {
       return pic_relaxation_time > 0 ? std::exp(-dt / pic_relaxation_time)
                                      : flip_fraction;
     }
+
+    double          end_time;
+    double          cfl_number;
+    double          fixed_time_step; ///< 0: from the CFL condition
+    UpdateScheme    scheme;
+    BasisType       basis;
+    Transfer        transfer;
+    double          flip_fraction;       ///< alpha: 0 = PIC, 1 = FLIP
+    double          pic_relaxation_time; ///< in s; 0: the FLIP fraction
     Tensor<1, dim>  gravity;
     double          damping;       ///< mass-proportional, in 1/s
     double          local_damping; ///< Cundall's alpha, in [0, 1)
