@@ -888,9 +888,10 @@ namespace mpm
       1 + dim, LinearAlgebra::distributed::Vector<double>(partitioner));
     for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
       {
-        fields[0].local_element(i) = integrator.nodal_mass(i);
+        fields[0].local_element(i) = integrator.nodal_state().mass(i);
         for (unsigned int d = 0; d < dim; ++d)
-          fields[1 + d].local_element(i) = integrator.nodal_velocity(i, d);
+          fields[1 + d].local_element(i) =
+            integrator.nodal_state().velocity(i, d);
       }
     DataOut<dim> data_out;
     data_out.attach_dof_handler(grid.dof_handler());

@@ -636,8 +636,8 @@ namespace mpm
         extra.push_back(f);
     if (integrator_parameters.macro_time_step > 0)
       {
-        extra.push_back(integrator->macro_step_number());
-        extra.push_back(integrator->largest_macro_mismatch());
+        extra.push_back(integrator->substepping().macro_step_number());
+        extra.push_back(integrator->substepping().largest_mismatch());
       }
     // Before anything is written: a run that fails keeps its last good
     // output.

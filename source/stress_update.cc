@@ -25,7 +25,7 @@ namespace mpm
     if (prm.energy_residual)
       add_stress_power(dt, false);
     if (points.layout().macro_step != FieldLayout::absent)
-      accumulate_macro_increment(dt);
+      substepper.accumulate_increment(dt);
   }
 
 

@@ -11,7 +11,9 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <mpm/checkpoint.h>
 #include <mpm/parameters.h>
+#include <mpm/substepping.h>
 #include <mpm/time_integrator.h>
 #include <mpm/time_integrator.templates.h>
 
@@ -44,6 +46,39 @@ namespace mpm
   } // namespace
 
 
+  template <int dim>
+  Substepper<dim>::Substepper(TimeIntegrator<dim> &integrator)
+    : integrator(integrator)
+    , prm(integrator.prm)
+    , grid(integrator.grid)
+    , points(integrator.points)
+    , nodes(integrator.nodes)
+    , timer(integrator.timer)
+    , comm(integrator.comm)
+  {
+  }
+
+
+  template <int dim>
+  void
+  Substepper<dim>::save_state(RunState &state) const
+  {
+    state.values["macro_steps"]          = n_macro_steps;
+    state.values["macro_mismatch"]       = mismatch;
+    state.values["macro_kinetic_energy"] = macro_kinetic_energy;
+  }
+
+
+  template <int dim>
+  void
+  Substepper<dim>::restore_state(const RunState &state)
+  {
+    n_macro_steps        = state.get("macro_steps");
+    mismatch             = state.get("macro_mismatch");
+    macro_kinetic_energy = state.get("macro_kinetic_energy");
+  }
+
+
   /**
    * The substeps are plain explicit steps: the points' state after them is
    * the macro step's result (S = 1 is the plain step, to the bit), and the
@@ -54,14 +89,14 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::macro_step(const double Dt)
+  Substepper<dim>::macro_step(const double Dt)
   {
-    begin_macro_step();
-    const double t_end = t + Dt;
+    begin();
+    const double t_end = integrator.t + Dt;
     for (unsigned int s = 0;; ++s)
       {
-        const double remaining = t_end - t;
-        const double limit     = stable_time_step();
+        const double remaining = t_end - integrator.t;
+        const double limit     = integrator.stable_time_step();
         if (prm.substeps > 0)
           {
             const bool   last = s + 1 == prm.substeps;
@@ -69,7 +104,8 @@ namespace mpm
             if (dt > limit * (1 + 1e-12))
               {
                 std::ostringstream msg;
-                msg << "macro step " << n_macro_steps << ", t = " << t
+                msg << "macro step " << n_macro_steps
+                    << ", t = " << integrator.t
                     << ": the substep Dt / S = " << dt
                     << " exceeds the stability limit " << limit
                     << " of the current state; set 'Simulation/substeps' to "
@@ -78,9 +114,9 @@ namespace mpm
                     << "CFL condition";
                 throw RunError(msg.str());
               }
-            explicit_step(dt);
-            if (after_substep)
-              after_substep();
+            integrator.explicit_step(dt);
+            if (integrator.after_substep)
+              integrator.after_substep();
             if (last)
               break;
           }
@@ -88,21 +124,21 @@ namespace mpm
           {
             const double n_left =
               std::max(1., std::ceil(remaining / limit * (1 - 1e-12)));
-            explicit_step(remaining / n_left);
-            if (after_substep)
-              after_substep();
+            integrator.explicit_step(remaining / n_left);
+            if (integrator.after_substep)
+              integrator.after_substep();
             if (n_left == 1)
               break;
           }
       }
-    t = t_end;
-    end_macro_step(Dt);
+    integrator.t = t_end;
+    end(Dt);
   }
 
 
   template <int dim>
   void
-  TimeIntegrator<dim>::begin_macro_step()
+  Substepper<dim>::begin()
   {
     TimerOutput::Scope scope(timer, "macro step");
     const FieldLayout &l = points.layout();
@@ -123,7 +159,7 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::accumulate_macro_increment(const double dt)
+  Substepper<dim>::accumulate_increment(const double dt)
   {
     TimerOutput::Scope scope(timer, "macro step");
     const FieldLayout &l = points.layout();
@@ -148,7 +184,7 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::swap_macro_positions()
+  Substepper<dim>::swap_positions()
   {
     {
       TimerOutput::Scope scope(timer, "macro step");
@@ -162,65 +198,67 @@ namespace mpm
         }
     }
     TimerOutput::Scope scope(timer, "relocate");
-    n_removed += points.relocate(prm.out_of_grid);
+    integrator.n_removed += points.relocate(prm.out_of_grid);
   }
 
 
   template <int dim>
   template <typename Basis>
   void
-  TimeIntegrator<dim>::scatter_macro_targets(const Basis &basis,
-                                             const double Dt)
+  Substepper<dim>::scatter_targets(const Basis &basis, const double Dt)
   {
     TimerOutput::Scope scope(timer, "macro step");
-    double            *g         = grid_sums.get_values();
-    const unsigned int n_entries = n_local_entries(grid_sums);
+    double            *g         = nodes.sums.get_values();
+    const unsigned int n_entries = n_local_entries(nodes.sums);
     for (unsigned int i = 0; i < n_entries; ++i)
       g[i] = 0;
     const FieldLayout &l = points.layout();
-    for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
-      const double             m = q[l.mass];
-      const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
-      const Tensor<1, dim>     mv    = m * target.velocity;
-      const Tensor<2, dim>     mC    = m * target.gradient;
-      const unsigned int       field = field_of(q);
-      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-        {
-          double              *node = g + n_sums * slot_of(s.nodes[v], field);
-          const Tensor<1, dim> pk   = mv + mC * s.node_offset(v);
-          node[mass] += s.weights[v] * m;
-          for (unsigned int d = 0; d < dim; ++d)
-            node[momentum + d] += s.weights[v] * pk[d];
-        }
-    });
-    grid_sums.compress(VectorOperation::add);
+    integrator.for_each_point(
+      basis, [&](auto &p, const double *q, const auto &s) {
+        const double             m = q[l.mass];
+        const SecantTargets<dim> target(p->get_location(),
+                                        q + l.macro_step,
+                                        Dt);
+        const Tensor<1, dim>     mv    = m * target.velocity;
+        const Tensor<2, dim>     mC    = m * target.gradient;
+        const unsigned int       field = nodes.field_of(q);
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          {
+            double *node = g + n_sums * nodes.slot_of(s.nodes[v], field);
+            const Tensor<1, dim> pk = mv + mC * s.node_offset(v);
+            node[mass] += s.weights[v] * m;
+            for (unsigned int d = 0; d < dim; ++d)
+              node[momentum + d] += s.weights[v] * pk[d];
+          }
+      });
+    nodes.sums.compress(VectorOperation::add);
   }
 
 
   template <int dim>
   void
-  TimeIntegrator<dim>::reconstruct_grid_velocity(const double Dt)
+  Substepper<dim>::reconstruct_grid_velocity(const double Dt)
   {
-    with_scene_basis([&](const auto &basis) {
-      scatter_macro_targets(basis, Dt);
+    integrator.with_scene_basis([&](const auto &basis) {
+      scatter_targets(basis, Dt);
       // Divided by the mass (and the least-squares system solved from
       // there), then projected on the boundary conditions like any grid
       // velocity. The projection is no work done on the bodies: the
       // substeps counted that already.
-      const double work_so_far = step_work;
-      grid_velocities_from_momentum(v_new);
+      const double work_so_far = integrator.step_work;
+      integrator.grid_velocities_from_momentum(v_new);
       if (prm.least_squares)
         {
           solve_least_squares_reconstruction(basis, Dt);
-          apply_velocity_constraints(v_new);
-          grid_velocity.update_ghost_values();
+          integrator.apply_velocity_constraints(v_new);
+          nodes.velocities.update_ghost_values();
         }
-      step_work = work_so_far;
+      integrator.step_work = work_so_far;
     });
     // v_old keeps the reconstruction as it was, v_new is what the
     // operations make of it.
-    double            *u         = grid_velocity.get_values();
-    const unsigned int n_entries = n_local_entries(grid_velocity);
+    double            *u         = nodes.velocities.get_values();
+    const unsigned int n_entries = n_local_entries(nodes.velocities);
     for (unsigned int i = 0; i < n_entries; i += n_velocities)
       for (unsigned int d = 0; d < dim; ++d)
         u[i + v_old + d] = u[i + v_new + d];
@@ -243,18 +281,19 @@ namespace mpm
   template <int dim>
   template <typename Basis>
   void
-  TimeIntegrator<dim>::solve_least_squares_reconstruction(const Basis &basis,
-                                                          const double Dt)
+  Substepper<dim>::solve_least_squares_reconstruction(const Basis &basis,
+                                                      const double Dt)
   {
     TimerOutput::Scope                 scope(timer, "macro least squares");
-    const Utilities::MPI::Partitioner &nodes    = grid.node_partitioner();
-    const IndexSet                    &owned    = nodes.locally_owned_range();
+    const Utilities::MPI::Partitioner &partition = grid.node_partitioner();
+    const IndexSet                    &owned = partition.locally_owned_range();
     IndexSet                           relevant = owned;
-    relevant.add_indices(nodes.ghost_indices());
-    const unsigned int n_local = owned.n_elements() + nodes.n_ghost_indices();
+    relevant.add_indices(partition.ghost_indices());
+    const unsigned int n_local =
+      owned.n_elements() + partition.n_ghost_indices();
     std::vector<types::global_dof_index> global(n_local);
     for (unsigned int i = 0; i < n_local; ++i)
-      global[i] = nodes.local_to_global(i);
+      global[i] = partition.local_to_global(i);
 
     const FieldLayout &l      = points.layout();
     const double       lambda = prm.least_squares_weight *
@@ -262,13 +301,14 @@ namespace mpm
     // The couplings: every pair of nodes of a point's stencil.
     TrilinosWrappers::SparsityPattern pattern(owned, owned, relevant, comm);
     std::array<types::global_dof_index, Basis::n_nodes> stencil;
-    for_each_point(basis, [&](auto &, const double *, const auto &s) {
-      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-        stencil[v] = global[s.nodes[v]];
-      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-        pattern.add_entries(stencil[v], stencil.begin(), stencil.end());
-    });
-    const double             *u = grid_velocity.get_values();
+    integrator.for_each_point(
+      basis, [&](auto &, const double *, const auto &s) {
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          stencil[v] = global[s.nodes[v]];
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          pattern.add_entries(stencil[v], stencil.begin(), stencil.end());
+      });
+    const double             *u = nodes.velocities.get_values();
     std::vector<unsigned int> massless;
     for (unsigned int i = 0; i < owned.n_elements(); ++i)
       if (!(u[n_velocities * i + node_mass] > 0))
@@ -285,24 +325,27 @@ namespace mpm
         solution[d].reinit(owned, comm);
       }
     std::array<double, Basis::n_nodes> row;
-    for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
-      const double             m = q[l.mass];
-      const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
-      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-        stencil[v] = global[s.nodes[v]];
-      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-        {
-          for (unsigned int w = 0; w < Basis::n_nodes; ++w)
-            row[w] = m * (s.weights[v] * s.weights[w] +
-                          lambda * (s.gradients[v] * s.gradients[w]));
-          A.add(stencil[v], Basis::n_nodes, stencil.data(), row.data());
-          const Tensor<1, dim> b =
-            m * (s.weights[v] * target.velocity +
-                 lambda * (target.gradient * s.gradients[v]));
-          for (unsigned int d = 0; d < dim; ++d)
-            rhs[d](stencil[v]) += b[d];
-        }
-    });
+    integrator.for_each_point(
+      basis, [&](auto &p, const double *q, const auto &s) {
+        const double             m = q[l.mass];
+        const SecantTargets<dim> target(p->get_location(),
+                                        q + l.macro_step,
+                                        Dt);
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          stencil[v] = global[s.nodes[v]];
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          {
+            for (unsigned int w = 0; w < Basis::n_nodes; ++w)
+              row[w] = m * (s.weights[v] * s.weights[w] +
+                            lambda * (s.gradients[v] * s.gradients[w]));
+            A.add(stencil[v], Basis::n_nodes, stencil.data(), row.data());
+            const Tensor<1, dim> b =
+              m * (s.weights[v] * target.velocity +
+                   lambda * (target.gradient * s.gradients[v]));
+            for (unsigned int d = 0; d < dim; ++d)
+              rhs[d](stencil[v]) += b[d];
+          }
+      });
     for (const unsigned int i : massless)
       A.add(global[i], global[i], 1.);
     A.compress(VectorOperation::add);
@@ -315,7 +358,7 @@ namespace mpm
       amg.initialize(A);
     else
       jacobi.initialize(A);
-    double *v_grid           = grid_velocity.get_values();
+    double *v_grid           = nodes.velocities.get_values();
     least_squares_iterations = 0;
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -360,14 +403,15 @@ namespace mpm
    */
   template <int dim>
   bool
-  TimeIntegrator<dim>::apply_macro_step_operations()
+  Substepper<dim>::apply_operations()
   {
     bool reset = false;
     if (prm.kinetic_damping)
       {
-        const double *u      = grid_velocity.get_values();
+        const double *u      = nodes.velocities.get_values();
         double        energy = 0;
-        for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes();
+        for (unsigned int i = 0;
+             i < nodes.n_fields * grid.n_locally_owned_nodes();
              ++i)
           energy +=
             0.5 * u[n_velocities * i + node_mass] *
@@ -375,8 +419,8 @@ namespace mpm
         energy = Utilities::MPI::sum(energy, comm);
         if (energy < macro_kinetic_energy)
           {
-            double            *w         = grid_velocity.get_values();
-            const unsigned int n_entries = n_local_entries(grid_velocity);
+            double            *w         = nodes.velocities.get_values();
+            const unsigned int n_entries = n_local_entries(nodes.velocities);
             for (unsigned int i = 0; i < n_entries; i += n_velocities)
               for (unsigned int d = 0; d < dim; ++d)
                 w[i + v_new + d] = 0;
@@ -392,19 +436,19 @@ namespace mpm
   template <int dim>
   template <typename Basis>
   void
-  TimeIntegrator<dim>::gather_macro_velocity(const Basis &basis,
-                                             const double Dt,
-                                             const bool   reset)
+  Substepper<dim>::gather_velocity(const Basis &basis,
+                                   const double Dt,
+                                   const bool   reset)
   {
     TimerOutput::Scope scope(timer, "macro step");
     const FieldLayout &l      = points.layout();
-    const double      *u_all  = grid_velocity.get_values();
+    const double      *u_all  = nodes.velocities.get_values();
     const bool         apic   = l.affine_velocity != FieldLayout::absent;
-    const unsigned int stride = n_fields * n_velocities;
+    const unsigned int stride = nodes.n_fields * n_velocities;
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
-    double                                     mismatch = 0;
-    for_each_point(basis, [&](auto &p, double *q, const auto &s) {
-      const double  *u = u_all + n_velocities * field_of(q);
+    double                                     largest_here = 0;
+    integrator.for_each_point(basis, [&](auto &p, double *q, const auto &s) {
+      const double  *u = u_all + n_velocities * nodes.field_of(q);
       Tensor<1, dim> v_reconstructed, v_reset;
       for (unsigned int v = 0; v < Basis::n_nodes; ++v)
         {
@@ -413,8 +457,8 @@ namespace mpm
           v_reset += s.weights[v] * Fields::vector<dim>(node + v_new);
         }
       const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
-      mismatch =
-        std::max(mismatch, Dt * (target.velocity - v_reconstructed).norm());
+      largest_here =
+        std::max(largest_here, Dt * (target.velocity - v_reconstructed).norm());
       if (reset)
         {
           Fields::store(v_reset, q + l.velocity);
@@ -424,42 +468,27 @@ namespace mpm
               q + l.affine_velocity);
         }
     });
-    macro_mismatch =
-      std::max(macro_mismatch,
-               Utilities::MPI::max(mismatch, comm) / grid.min_cell_size());
+    mismatch =
+      std::max(mismatch,
+               Utilities::MPI::max(largest_here, comm) / grid.min_cell_size());
   }
 
 
   template <int dim>
   void
-  TimeIntegrator<dim>::end_macro_step(const double Dt)
+  Substepper<dim>::end(const double Dt)
   {
-    swap_macro_positions(); // the points at x^n, x^(n+1) in their field
+    swap_positions(); // the points at x^n, x^(n+1) in their field
     reconstruct_grid_velocity(Dt);
-    const bool reset = apply_macro_step_operations();
-    with_scene_basis(
-      [&](const auto &basis) { gather_macro_velocity(basis, Dt, reset); });
-    swap_macro_positions(); // and back at x^(n+1)
+    const bool reset = apply_operations();
+    integrator.with_scene_basis(
+      [&](const auto &basis) { gather_velocity(basis, Dt, reset); });
+    swap_positions(); // and back at x^(n+1)
     ++n_macro_steps;
   }
 
 
-  template void
-  TimeIntegrator<1>::macro_step(const double);
-  template void
-  TimeIntegrator<2>::macro_step(const double);
-  template void
-  TimeIntegrator<3>::macro_step(const double);
-  template void
-  TimeIntegrator<1>::reconstruct_grid_velocity(const double);
-  template void
-  TimeIntegrator<2>::reconstruct_grid_velocity(const double);
-  template void
-  TimeIntegrator<3>::reconstruct_grid_velocity(const double);
-  template void
-  TimeIntegrator<1>::accumulate_macro_increment(const double);
-  template void
-  TimeIntegrator<2>::accumulate_macro_increment(const double);
-  template void
-  TimeIntegrator<3>::accumulate_macro_increment(const double);
+  template class Substepper<1>;
+  template class Substepper<2>;
+  template class Substepper<3>;
 } // namespace mpm

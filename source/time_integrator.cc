@@ -54,6 +54,24 @@ namespace mpm
   }
 
 
+  namespace
+  {
+    /// The velocity field of each of @p n_bodies bodies: its own with
+    /// multi-body @p contact, else the one shared field.
+    template <int dim>
+    std::vector<unsigned int>
+    fields_of_bodies(const MultiFieldContact<dim> *contact,
+                     const unsigned int            n_bodies)
+    {
+      std::vector<unsigned int> fields(n_bodies, 0);
+      if (contact)
+        for (unsigned int b = 0; b < n_bodies; ++b)
+          fields[b] = contact->field_of_body(b);
+      return fields;
+    }
+  } // namespace
+
+
   template <int dim>
   TimeIntegrator<dim>::TimeIntegrator(
     const IntegratorParameters<dim>     &parameters,
@@ -75,16 +93,17 @@ namespace mpm
                       ? virtual_fluid
                       : nullptr)
     , contact(contact != nullptr && contact->n_fields() > 1 ? contact : nullptr)
-    , n_fields(this->contact ? this->contact->n_fields() : 1)
+    , nodes(this->contact ? this->contact->n_fields() : 1,
+            fields_of_bodies(this->contact, points.bodies().size()),
+            points.layout().body,
+            prm.mass_scaling)
     , usf_contact_rule(prm.scheme == UpdateScheme::USF && this->contact &&
                        this->contact->deformable_bodies_touch())
     , timer(timer)
     , comm(comm)
+    , substepper(*this)
   {
     setup_nodal_data();
-    for (unsigned int b = 0; b < points.bodies().size(); ++b)
-      field_of_body.push_back(this->contact ? this->contact->field_of_body(b)
-                                            : 0);
     for (const auto &body : points.bodies())
       {
         // A rigid body's material is not used: no wave crosses it.
@@ -153,7 +172,7 @@ namespace mpm
                              allowed.str());
           }
       }
-    if (prm.least_squares && n_fields > 1)
+    if (prm.least_squares && nodes.n_fields > 1)
       throw InputError("Simulation/macro reconstruction",
                        "least squares",
                        "works on one velocity field; a scene with bodies in "
@@ -183,7 +202,7 @@ namespace mpm
   TimeIntegrator<dim>::step(const double max_dt)
   {
     if (prm.macro_time_step > 0)
-      macro_step(std::min(prm.macro_time_step, max_dt));
+      substepper.macro_step(std::min(prm.macro_time_step, max_dt));
     else
       explicit_step(std::min(explicit_time_step(), max_dt));
   }
@@ -299,11 +318,7 @@ namespace mpm
     state.values["removed_points"] = n_removed;
     state.values["stress_work"]    = stress_work();
     if (prm.macro_time_step > 0)
-      {
-        state.values["macro_steps"]          = n_macro_steps;
-        state.values["macro_mismatch"]       = macro_mismatch;
-        state.values["macro_kinetic_energy"] = macro_kinetic_energy;
-      }
+      substepper.save_state(state);
   }
 
 
@@ -321,11 +336,7 @@ namespace mpm
     if (prm.energy_residual)
       absorbed_work = first ? state.get("stress_work") : 0.;
     if (prm.macro_time_step > 0)
-      {
-        n_macro_steps        = state.get("macro_steps");
-        macro_mismatch       = state.get("macro_mismatch");
-        macro_kinetic_energy = state.get("macro_kinetic_energy");
-      }
+      substepper.restore_state(state);
   }
 
 

@@ -101,7 +101,7 @@ namespace tests
             for (const unsigned int k :
                  grid->owned_nodes_in_box(x + Tensor<1, 2>(-e),
                                           x + Tensor<1, 2>(e)))
-              if (integrator->nodal_mass(k) > 0)
+              if (integrator->nodal_state().mass(k) > 0)
                 f(x, k);
           }
     }
@@ -109,8 +109,8 @@ namespace tests
     Tensor<1, 2>
     nodal_velocity(const unsigned int k) const
     {
-      return Tensor<1, 2>(
-        {integrator->nodal_velocity(k, 0), integrator->nodal_velocity(k, 1)});
+      return Tensor<1, 2>({integrator->nodal_state().velocity(k, 0),
+                           integrator->nodal_state().velocity(k, 1)});
     }
   };
 

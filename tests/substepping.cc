@@ -88,7 +88,7 @@ end
             mpm::Fields::store(Tensor<1, 2>(x + Dt * (a + B * x)), m);
             mpm::Fields::store(G, m + 2);
           }
-        scene.integrator->reconstruct_grid_velocity(Dt);
+        scene.integrator->substepping().reconstruct_grid_velocity(Dt);
         double       error = 0;
         unsigned int nodes = 0;
         scene.for_each_node_with_mass(
@@ -186,9 +186,10 @@ end
             mpm::Fields::store(Tensor<1, 2>(x + Dt * v), m);
             mpm::Fields::store(G, m + 2);
           }
-        scene.integrator->reconstruct_grid_velocity(Dt);
+        scene.integrator->substepping().reconstruct_grid_velocity(Dt);
         if (least_squares)
-          iterations = scene.integrator->last_least_squares_iterations();
+          iterations =
+            scene.integrator->substepping().last_least_squares_iterations();
         J[least_squares] = least_squares_functional(
           scene, Dt, 0.25 * std::pow(scene.grid->cell_size()[0], 2));
       }
@@ -246,7 +247,7 @@ end
           m * (xn[0] * vs[1] - xn[1] * vs[0] + d * (Cs[1][0] - Cs[0][1]));
       }
     scene.for_each_node_with_mass([&](const Point<2> &x, const unsigned int k) {
-      const double       m = scene.integrator->nodal_mass(k);
+      const double       m = scene.integrator->nodal_state().mass(k);
       const Tensor<1, 2> v = scene.nodal_velocity(k);
       P_grid += m * v;
       L_grid += m * (x[0] * v[1] - x[1] * v[0]);

@@ -15,8 +15,10 @@
 #include <mpm/checkpoint.h>
 #include <mpm/contact/multi_field.h>
 #include <mpm/grid/nodal_layout.h>
+#include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
+#include <mpm/substepping.h>
 
 #include <array>
 #include <functional>
@@ -60,10 +62,10 @@ namespace mpm
    * followed by relocation of the points and a check of their state. The
    * variants share every kernel; only the order differs.
    *
-   * Nodal data: `grid_sums` holds [m, mv (dim), f (dim)] per node and is
-   * summed over ranks with compress(add); `grid_velocity` holds [m, v, v*]
-   * per node (mass, velocity before and after the force update) and is
-   * read through ghost values.
+   * Nodal data (NodalState): `nodes.sums` holds [m, mv (dim), f (dim)]
+   * per node and is summed over ranks with compress(add);
+   * `nodes.velocities` holds [m, v, v*] per node (mass, velocity before
+   * and after the force update) and is read through ghost values.
    *
    * Small-mass guard: a node that only the far corner of a point's stencil
    * reaches has a mass that tends to zero while its force does not, so its
@@ -106,46 +108,16 @@ namespace mpm
     void
     step(const double max_dt);
 
-    /**
-     * Substepping: the grid velocity on the start-of-step configuration
-     * from the points' secant motion over a macro step of length @p Dt
-     * (seed 003, the closed-form APIC reconstruction),
-     *   m_k v_k = sum_p m_p w_kp(x_p^n) (v*_p + C*_p (x_k - x_p^n)),
-     *   Dt v*_p = x_p^(n+1) - x_p^n,   Dt C*_p = F_p^(n+1) (F_p^n)^-1 - I,
-     * then divided by m_k and projected on the boundary conditions.
-     * Expects the points at x_p^n, with x_p^(n+1) and the substeps'
-     * deformation increment in their 'macro step' field (as end_macro_step
-     * leaves them; public for the tests). nodal_velocity() then reads v_k.
-     */
-    void
-    reconstruct_grid_velocity(const double Dt);
-
-    /// Macro steps taken so far (0 without substepping).
-    unsigned int
-    macro_step_number() const
+    /// The macro steps (substepping; their counters are 0 without).
+    const Substepper<dim> &
+    substepping() const
     {
-      return n_macro_steps;
+      return substepper;
     }
-
-    /**
-     * The largest distance, over all points and macro steps so far, between
-     * a point's substepped position and where the reconstructed grid
-     * velocity carries it, |x_p^(n+1) - x_p^n - Dt sum_k w_kp v_k|, in
-     * units of the smallest cell size: how faithfully the macro step's grid
-     * velocity stands for the substeps (seed 003's consistency).
-     */
-    double
-    largest_macro_mismatch() const
+    Substepper<dim> &
+    substepping()
     {
-      return macro_mismatch;
-    }
-
-    /// Least-squares reconstruction: conjugate-gradient iterations of the
-    /// last macro step, summed over the components.
-    unsigned int
-    last_least_squares_iterations() const
-    {
-      return least_squares_iterations;
+      return substepper;
     }
 
     double
@@ -169,12 +141,12 @@ namespace mpm
       return n_removed;
     }
 
-    /// Mass and latest velocity (of the centre of mass of its fields) of
-    /// locally owned node @p i (grid output).
-    double
-    nodal_mass(const unsigned int i) const;
-    double
-    nodal_velocity(const unsigned int i, const unsigned int d) const;
+    /// The nodal arrays of the last step (grid output).
+    const NodalState<dim> &
+    nodal_state() const
+    {
+      return nodes;
+    }
 
     /// One P2G -> G2P round trip with no time step and no forces: what
     /// the transfer alone does to the points' velocities (rigid rotation
@@ -238,6 +210,8 @@ namespace mpm
     stress_work() const;
 
   private:
+    friend class Substepper<dim>;
+
     // Components of the interleaved nodal vectors (see NodalLayout).
     using Layout                               = NodalLayout<dim>;
     static constexpr unsigned int mass         = Layout::mass;
@@ -262,47 +236,6 @@ namespace mpm
     /// (checked against it).
     double
     explicit_time_step();
-    /// S substeps and the macro step's reconstruction and operations.
-    void
-    macro_step(const double Dt);
-    /// Record x_p^n and start each point's deformation increment at I.
-    void
-    begin_macro_step();
-    /// Swap each point's position with the one in its 'macro step' field
-    /// (x^(n+1) <-> x^n) and put the points in their cells again.
-    void
-    swap_macro_positions();
-    /// Multiply each point's deformation increment by this substep's
-    /// I + dt L (after F-bar: the increment the stress update used).
-    void
-    accumulate_macro_increment(const double dt);
-    /// The reconstruction, the operations on v_k and their transfer back
-    /// to the points (see reconstruct_grid_velocity()).
-    void
-    end_macro_step(const double Dt);
-    template <typename Basis>
-    void
-    scatter_macro_targets(const Basis &basis, const double Dt);
-    /// Seed 003's system (4) for v_k, solved from the closed form's v_k.
-    template <typename Basis>
-    void
-    solve_least_squares_reconstruction(const Basis &basis, const double Dt);
-    /**
-     * The hook where operations that need the whole macro step act on the
-     * reconstructed grid velocity v_k (a projection, a coupling with a
-     * large-step solver). Returns true if an operation reset v_k, so that
-     * the points must take their velocities from it.
-     */
-    bool
-    apply_macro_step_operations();
-    /// The points take the grid velocity (after a reset by an operation),
-    /// and the macro step's mismatch is measured.
-    template <typename Basis>
-    void
-    gather_macro_velocity(const Basis &basis,
-                          const double Dt,
-                          const bool   reset);
-
     /// Call @p f with the scene's basis on this grid (the basis class is
     /// chosen at run time, once, and everything in @p f is compiled for it).
     template <typename F>
@@ -366,19 +299,6 @@ namespace mpm
     /// do not part along the normal (see apply_contact).
     void
     strain_rate_velocities_with_contact(const double dt);
-    /// The field a point scatters into and gathers from.
-    unsigned int
-    field_of(const double *q) const
-    {
-      return n_fields == 1 ? 0 : field_of_body[q[points.layout().body]];
-    }
-    /// Offset of node @p node's field @p field in the nodal vectors, in
-    /// units of their per-field stride.
-    unsigned int
-    slot_of(const unsigned int node, const unsigned int field) const
-    {
-      return Layout::slot_of(node, field, n_fields);
-    }
     /// Boundary constraints on the nodal velocities in @p slot: contact,
     /// the grid's faces, the velocity region; @p dt > 0 at the force
     /// update, where reactions are measured and dashpots act;
@@ -482,10 +402,8 @@ namespace mpm
     VirtualFluid<dim> *virtual_fluid;
     /// Null, or the multi-body contact (only if a body has its own field).
     MultiFieldContact<dim> *contact;
-    /// Velocity fields per node: 1, or 1 + the bodies with their own. Each
-    /// nodal vector holds the fields of a node one after the other.
-    unsigned int              n_fields;
-    std::vector<unsigned int> field_of_body;
+    /// The nodal arrays and the velocity fields they hold per node.
+    NodalState<dim> nodes;
     /// USF with deformable bodies that touch (see
     /// strain_rate_velocities_with_contact).
     const bool usf_contact_rule;
@@ -500,8 +418,6 @@ namespace mpm
     TimerOutput               &timer;
     MPI_Comm                   comm;
 
-    LinearAlgebra::distributed::Vector<double> grid_sums;
-    LinearAlgebra::distributed::Vector<double> grid_velocity;
     /// Virtual fluid only: the wetted bodies' volume at the nodes, the
     /// volume of a node's support in the grid (integral of its shape
     /// function), and the fluid's nodal forces.
@@ -529,15 +445,6 @@ namespace mpm
     std::vector<FunctionParser<dim> *> body_forces; ///< null: none
     bool                               has_body_forces = false;
 
-    /// Substepping: macro steps taken, the largest mismatch (see
-    /// largest_macro_mismatch()), and the grid's kinetic energy at the last
-    /// macro step (kinetic damping).
-    unsigned int n_macro_steps        = 0;
-    double       macro_mismatch       = 0;
-    double       macro_kinetic_energy = 0;
-    /// Least squares: CG iterations of the last macro step (all components).
-    unsigned int least_squares_iterations = 0;
-
     double                min_nodal_mass;
     double                t         = 0;
     double                last_dt   = 0;
@@ -549,6 +456,8 @@ namespace mpm
     double step_work = 0, work = 0, absolute_work = 0, body_force_power = 0;
     /// This rank's share of stress_work().
     double absorbed_work = 0;
+    /// The macro steps, if the scene sets a macro time step.
+    Substepper<dim> substepper;
   };
 } // namespace mpm
 

@@ -44,7 +44,7 @@ namespace mpm
     // lookup of nodal-vector indices is done once per cell and pattern
     // (the points of a cell are mostly stored together).
     std::array<std::array<unsigned int, Basis::n_nodes>, Basis::n_patterns>
-                                                  nodes;
+                                                  pattern_nodes;
     Particles::ParticleHandler<dim>              &particles = points.handler();
     typename BackgroundGrid<dim>::CellCoordinates cell, last_cell, first;
     // The stencil's nodes are looked up in the tile's node block (the
@@ -82,7 +82,7 @@ namespace mpm
             if constexpr (Basis::needs_half_width)
               half_width = domain_half_width(q);
             basis.evaluate(cell, xi, half_width, s);
-            auto &list = nodes[s.pattern];
+            auto &list = pattern_nodes[s.pattern];
             if (!(known_patterns & (1u << s.pattern)))
               {
                 basis.node_pattern(cell, s, list, index_of);

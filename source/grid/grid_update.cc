@@ -12,12 +12,11 @@ namespace mpm
   void
   TimeIntegrator<dim>::setup_nodal_data()
   {
-    grid_sums.reinit(grid.make_partitioner(n_fields * n_sums));
-    grid_velocity.reinit(grid.make_partitioner(n_fields * n_velocities));
+    nodes.reinit(grid);
     if (contact)
       {
         contact_data.reinit(grid.make_partitioner(
-          n_fields * MultiFieldContact<dim>::data_per_field));
+          nodes.n_fields * MultiFieldContact<dim>::data_per_field));
         // Only deformable fields press on each other.
         if (prm.scheme == UpdateScheme::MUSL &&
             contact->deformable_bodies_touch())
@@ -26,7 +25,7 @@ namespace mpm
     if (virtual_fluid)
       {
         fluid_volume.reinit(grid.make_partitioner(1));
-        fluid_force.reinit(grid.make_partitioner(n_fields * dim));
+        fluid_force.reinit(grid.make_partitioner(nodes.n_fields * dim));
         support_volume.reinit(grid.make_partitioner(1));
         for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
           support_volume.local_element(i) = grid.node_support_volume(i);
@@ -41,11 +40,12 @@ namespace mpm
                                                      const bool for_strain_rate)
   {
     TimerOutput::Scope scope(timer, "grid update");
-    const double      *g       = grid_sums.get_values();
-    double            *u       = grid_velocity.get_values();
+    const double      *g       = nodes.sums.get_values();
+    double            *u       = nodes.velocities.get_values();
     const double       inertia = prm.mass_scaling;
     // The fields of a node follow each other: one loop over all entries.
-    for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
+    for (unsigned int i = 0; i < nodes.n_fields * grid.n_locally_owned_nodes();
+         ++i)
       {
         const double *node  = g + n_sums * i;
         double       *vel   = u + n_velocities * i;
@@ -58,7 +58,7 @@ namespace mpm
           vel[slot + d] = node[momentum + d] * inv_m;
       }
     apply_velocity_constraints(slot, 0., for_strain_rate);
-    grid_velocity.update_ghost_values();
+    nodes.velocities.update_ghost_values();
   }
 
 
@@ -67,8 +67,8 @@ namespace mpm
   TimeIntegrator<dim>::grid_velocities_after_forces(const double dt)
   {
     TimerOutput::Scope scope(timer, "grid update");
-    const double      *g = grid_sums.get_values();
-    double            *u = grid_velocity.get_values();
+    const double      *g = nodes.sums.get_values();
+    double            *u = nodes.velocities.get_values();
     // Implicit in the damping term: unconditionally stable for any c.
     const double damping_factor = 1. / (1. + prm.damping * dt);
     const double alpha          = prm.local_damping;
@@ -76,7 +76,8 @@ namespace mpm
     // the points, v_old + (gamma + 1/2) dt a.
     const bool   newmark       = prm.newmark_gamma != 0.5;
     const double motion_factor = prm.newmark_gamma + 0.5;
-    for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
+    for (unsigned int i = 0; i < nodes.n_fields * grid.n_locally_owned_nodes();
+         ++i)
       {
         const double *node = g + n_sums * i;
         double       *vel  = u + n_velocities * i;
@@ -95,7 +96,9 @@ namespace mpm
       }
     // A loop of its own, so that the plain step's stays as it was.
     if (newmark)
-      for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
+      for (unsigned int i = 0;
+           i < nodes.n_fields * grid.n_locally_owned_nodes();
+           ++i)
         {
           double *vel = u + n_velocities * i;
           for (unsigned int d = 0; d < dim; ++d)
@@ -103,11 +106,12 @@ namespace mpm
                              motion_factor * (vel[v_new + d] - vel[v_old + d]);
         }
     apply_velocity_constraints(v_new, dt);
-    grid_velocity.update_ghost_values();
+    nodes.velocities.update_ghost_values();
     if (virtual_fluid)
       {
         virtual_fluid->add_impulse(dt * fluid_force_total);
-        for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes();
+        for (unsigned int i = 0;
+             i < nodes.n_fields * grid.n_locally_owned_nodes();
              ++i)
           for (unsigned int d = 0; d < dim; ++d)
             step_work += 0.5 * dt * fluid_force.local_element(dim * i + d) *
@@ -126,12 +130,12 @@ namespace mpm
     if (contact)
       apply_contact(slot, dt, for_strain_rate);
     // Grid faces and the velocity region act on every field alike.
-    double *u = grid_velocity.get_values();
-    faces.apply(u, n_fields, slot, dt);
+    double *u = nodes.velocities.get_values();
+    faces.apply(u, nodes.n_fields, slot, dt);
     if (velocity_region.enabled())
-      for (unsigned int f = 0; f < n_fields; ++f)
+      for (unsigned int f = 0; f < nodes.n_fields; ++f)
         step_work += velocity_region.enforce(u + n_velocities * f,
-                                             n_fields * n_velocities,
+                                             nodes.n_fields * n_velocities,
                                              slot,
                                              dt);
   }
@@ -168,7 +172,7 @@ namespace mpm
                                      const double       dt,
                                      const bool         for_strain_rate)
   {
-    double       *u    = grid_velocity.get_values();
+    double       *u    = nodes.velocities.get_values();
     const double *data = contact_data.get_values();
     contact->set_time(t);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
@@ -178,11 +182,11 @@ namespace mpm
     for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
       {
         const bool pressed =
-          contact->correct_node(u + n_velocities * slot_of(i, 0),
+          contact->correct_node(u + n_velocities * nodes.slot_of(i, 0),
                                 n_velocities,
                                 slot,
                                 data + MultiFieldContact<dim>::data_per_field *
-                                         slot_of(i, 0),
+                                         nodes.slot_of(i, 0),
                                 min_nodal_mass,
                                 hold && pressed_nodes[i],
                                 impulse);
@@ -203,20 +207,20 @@ namespace mpm
   TimeIntegrator<dim>::strain_rate_velocities_with_contact(const double dt)
   {
     TimerOutput::Scope scope(timer, "grid update");
-    const double      *g    = grid_sums.get_values();
+    const double      *g    = nodes.sums.get_values();
     const double      *data = contact_data.get_values();
-    double            *u    = grid_velocity.get_values();
+    double            *u    = nodes.velocities.get_values();
     contact->set_time(t);
     // A node's fields, to try the force update on: only the sign of the
     // approach matters, so damping and Newmark's factor are left out, and
     // no reaction is measured.
-    std::vector<double>         trial(n_fields * n_velocities);
+    std::vector<double>         trial(nodes.n_fields * n_velocities);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
     for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
       {
-        double      *node      = u + n_velocities * slot_of(i, 0);
+        double      *node      = u + n_velocities * nodes.slot_of(i, 0);
         unsigned int n_present = 0;
-        for (unsigned int f = 0; f < n_fields; ++f)
+        for (unsigned int f = 0; f < nodes.n_fields; ++f)
           {
             double *vel = node + n_velocities * f;
             for (unsigned int d = 0; d < dim; ++d)
@@ -225,17 +229,17 @@ namespace mpm
           }
         if (n_present < 2)
           continue;
-        std::copy(node, node + n_fields * n_velocities, trial.begin());
-        for (unsigned int f = 0; f < n_fields; ++f)
+        std::copy(node, node + nodes.n_fields * n_velocities, trial.begin());
+        for (unsigned int f = 0; f < nodes.n_fields; ++f)
           {
-            const double *sums = g + n_sums * slot_of(i, f);
+            const double *sums = g + n_sums * nodes.slot_of(i, f);
             double       *vel  = trial.data() + n_velocities * f;
             const double  dt_m = vel[node_mass] > 0 ? dt / vel[node_mass] : 0.;
             for (unsigned int d = 0; d < dim; ++d)
               vel[v_new + d] += dt_m * sums[force + d];
           }
         const double *node_data =
-          data + MultiFieldContact<dim>::data_per_field * slot_of(i, 0);
+          data + MultiFieldContact<dim>::data_per_field * nodes.slot_of(i, 0);
         if (contact->correct_node(trial.data(),
                                   n_velocities,
                                   v_new,
@@ -251,58 +255,25 @@ namespace mpm
                                 true,
                                 impulse);
       }
-    grid_velocity.update_ghost_values();
-  }
-
-
-  template <int dim>
-  double
-  TimeIntegrator<dim>::nodal_mass(const unsigned int i) const
-  {
-    double m = 0;
-    for (unsigned int f = 0; f < n_fields; ++f)
-      m +=
-        grid_velocity.local_element(n_velocities * slot_of(i, f) + node_mass);
-    return m / prm.mass_scaling; // the true mass
-  }
-
-
-  template <int dim>
-  double
-  TimeIntegrator<dim>::nodal_velocity(const unsigned int i,
-                                      const unsigned int d) const
-  {
-    double m = 0, p = 0;
-    for (unsigned int f = 0; f < n_fields; ++f)
-      {
-        const double *node =
-          grid_velocity.begin() + n_velocities * slot_of(i, f);
-        m += node[node_mass];
-        p += node[node_mass] * node[v_new + d];
-      }
-    return m > 0 ? p / m : 0.;
+    nodes.velocities.update_ghost_values();
   }
 
 
   // Members of TimeIntegrator defined here, instantiated for each dimension
   // (the class itself is instantiated in time_integrator.cc).
-#define MPM_INSTANTIATE(dim)                                                 \
-  template void TimeIntegrator<dim>::setup_nodal_data();                     \
-  template void TimeIntegrator<dim>::grid_velocities_from_momentum(          \
-    const unsigned int, const bool);                                         \
-  template void TimeIntegrator<dim>::grid_velocities_after_forces(           \
-    const double);                                                           \
-  template void TimeIntegrator<dim>::apply_velocity_constraints(             \
-    const unsigned int, const double, const bool);                           \
-  template void TimeIntegrator<dim>::apply_contact(const unsigned int,       \
-                                                   const double,             \
-                                                   const bool);              \
-  template void TimeIntegrator<dim>::strain_rate_velocities_with_contact(    \
-    const double);                                                           \
-  template double TimeIntegrator<dim>::nodal_mass(const unsigned int) const; \
-  template double TimeIntegrator<dim>::nodal_velocity(const unsigned int,    \
-                                                      const unsigned int)    \
-    const;
+#define MPM_INSTANTIATE(dim)                                              \
+  template void TimeIntegrator<dim>::setup_nodal_data();                  \
+  template void TimeIntegrator<dim>::grid_velocities_from_momentum(       \
+    const unsigned int, const bool);                                      \
+  template void TimeIntegrator<dim>::grid_velocities_after_forces(        \
+    const double);                                                        \
+  template void TimeIntegrator<dim>::apply_velocity_constraints(          \
+    const unsigned int, const double, const bool);                        \
+  template void TimeIntegrator<dim>::apply_contact(const unsigned int,    \
+                                                   const double,          \
+                                                   const bool);           \
+  template void TimeIntegrator<dim>::strain_rate_velocities_with_contact( \
+    const double);
   MPM_INSTANTIATE(1)
   MPM_INSTANTIATE(2)
   MPM_INSTANTIATE(3)

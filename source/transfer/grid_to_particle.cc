@@ -33,7 +33,7 @@ namespace mpm
   {
     TimerOutput::Scope scope(timer, "G2P");
     const FieldLayout &l     = points.layout();
-    const double      *u_all = grid_velocity.get_values();
+    const double      *u_all = nodes.velocities.get_values();
     // Newmark's gamma (USL, FLIP): see grid_velocities_after_forces.
     const GatherState                          state{dt,
                             prm.flip_fraction_of_step(dt),
@@ -41,8 +41,8 @@ namespace mpm
                             1. / (prm.newmark_gamma + 0.5),
                             min_nodal_mass};
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
-    const unsigned int                         fields_per_node = n_fields;
-    const unsigned int *fields_of_body = field_of_body.data();
+    const unsigned int                         fields_per_node = nodes.n_fields;
+    const unsigned int *fields_of_body = nodes.field_of_body.data();
     // Compiled once for each transfer and for one or several fields, so
     // that the PIC/FLIP loop carries nothing of APIC's, nor a scene
     // without contact anything of it.
@@ -78,7 +78,7 @@ namespace mpm
       });
     };
     with_transfer(prm.transfer, [&](auto transfer) {
-      if (n_fields > 1)
+      if (nodes.n_fields > 1)
         gather(transfer, std::true_type());
       else
         gather(transfer, std::false_type());
@@ -98,9 +98,10 @@ namespace mpm
       apply_velocity_gradient(p,
                               q,
                               velocity_gradient(s,
-                                                grid_velocity.get_values() +
-                                                  n_velocities * field_of(q),
-                                                n_fields * n_velocities,
+                                                nodes.velocities.get_values() +
+                                                  n_velocities *
+                                                    nodes.field_of(q),
+                                                nodes.n_fields * n_velocities,
                                                 slot,
                                                 0.),
                               dt);

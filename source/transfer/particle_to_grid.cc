@@ -50,26 +50,26 @@ namespace mpm
     with_scene_basis([&](const auto &basis) {
       using Basis = std::decay_t<decltype(basis)>;
       scatter_masses_then_forces(basis);
-      double       *u = grid_velocity.get_values();
-      const double *g = grid_sums.get_values();
+      double       *u = nodes.velocities.get_values();
+      const double *g = nodes.sums.get_values();
       for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
         {
           const Tensor<1, dim> w_i = w(grid.owned_node_coordinates(i));
-          for (unsigned int f = 0; f < n_fields; ++f)
+          for (unsigned int f = 0; f < nodes.n_fields; ++f)
             for (unsigned int d = 0; d < dim; ++d)
               {
-                u[n_velocities * slot_of(i, f) + v_new + d] = w_i[d];
-                work += g[n_sums * slot_of(i, f) + force + d] * w_i[d];
+                u[n_velocities * nodes.slot_of(i, f) + v_new + d] = w_i[d];
+                work += g[n_sums * nodes.slot_of(i, f) + force + d] * w_i[d];
               }
         }
-      grid_velocity.update_ghost_values();
+      nodes.velocities.update_ghost_values();
       const FieldLayout &l = points.layout();
       for_each_point(basis, [&](auto &, const double *q, const auto &s) {
         const Tensor<2, dim> L =
           velocity_gradient(s,
-                            grid_velocity.get_values() +
-                              n_velocities * field_of(q),
-                            n_fields * n_velocities,
+                            nodes.velocities.get_values() +
+                              n_velocities * nodes.field_of(q),
+                            nodes.n_fields * n_velocities,
                             v_new,
                             strain_rate_light_mass<Basis>());
         power +=
@@ -136,8 +136,8 @@ namespace mpm
                                        const double light_mass)
   {
     TimerOutput::Scope scope(timer, "P2G");
-    double            *g         = grid_sums.get_values();
-    const unsigned int n_entries = n_local_entries(grid_sums);
+    double            *g         = nodes.sums.get_values();
+    const unsigned int n_entries = n_local_entries(nodes.sums);
     for (unsigned int i = 0; i < n_entries; i += n_sums)
       {
         if (mass_and_momentum)
@@ -159,10 +159,10 @@ namespace mpm
     double     power                    = 0; // of the body forces
     const bool with_point_loads         = l.point_load != FieldLayout::absent;
     const bool with_surface_loads       = l.load_moment != FieldLayout::absent;
-    const unsigned int  fields_per_node = n_fields;
-    const unsigned int *fields_of_body  = field_of_body.data();
+    const unsigned int  fields_per_node = nodes.n_fields;
+    const unsigned int *fields_of_body  = nodes.field_of_body.data();
     // The nodal masses of the guard (light_mass > 0), ghosted.
-    const double *velocities = grid_velocity.get_values();
+    const double *velocities = nodes.velocities.get_values();
     for (auto *f : body_forces)
       if (f != nullptr)
         f->set_time(t);
@@ -221,7 +221,7 @@ namespace mpm
                     {
                       double *data = contact_data.begin() +
                                      MultiFieldContact<dim>::data_per_field *
-                                       slot_of(s.nodes[v], field);
+                                       nodes.slot_of(s.nodes[v], field);
                       for (unsigned int d = 0; d < dim; ++d)
                         data[d] += weight * s.gradients[v][d];
                       const Tensor<1, dim> r      = s.node_offset(v);
@@ -328,14 +328,14 @@ namespace mpm
     // Compiled for each transfer as well: the PIC/FLIP loop carries nothing
     // of APIC's.
     with_transfer(prm.transfer, [&](auto transfer) {
-      if (n_fields > 1)
+      if (nodes.n_fields > 1)
         scatter(transfer, std::true_type());
       else
         scatter(transfer, std::false_type());
     });
     if (forces)
       body_force_power = power;
-    grid_sums.compress(VectorOperation::add);
+    nodes.sums.compress(VectorOperation::add);
     if (with_gradients)
       contact_data.compress(VectorOperation::add);
     if (forces && virtual_fluid)
@@ -407,15 +407,16 @@ namespace mpm
             const Tensor<1, dim> f =
               -V * (pressure * s.gradients[v] + s.weights[v] * grad_p);
             for (unsigned int d = 0; d < dim; ++d)
-              fluid_force.local_element(dim * slot_of(s.nodes[v], field_of(q)) +
-                                        d) += f[d];
+              fluid_force.local_element(
+                dim * nodes.slot_of(s.nodes[v], nodes.field_of(q)) + d) += f[d];
           }
     });
     fluid_force.compress(VectorOperation::add);
 
-    double *g         = grid_sums.get_values();
+    double *g         = nodes.sums.get_values();
     fluid_force_total = Tensor<1, dim>();
-    for (unsigned int i = 0; i < n_fields * grid.n_locally_owned_nodes(); ++i)
+    for (unsigned int i = 0; i < nodes.n_fields * grid.n_locally_owned_nodes();
+         ++i)
       for (unsigned int d = 0; d < dim; ++d)
         {
           const double f = fluid_force.local_element(dim * i + d);

@@ -1,0 +1,84 @@
+#ifndef mpm_grid_nodal_state_h
+#define mpm_grid_nodal_state_h
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <mpm/grid/nodal_layout.h>
+
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  template <int dim>
+  class BackgroundGrid;
+
+  /**
+   * The state the stages of a step share on the grid: the two nodal arrays
+   * of NodalLayout and the velocity fields they hold per node. The
+   * transfers write and read them, the grid update turns sums into
+   * velocities, the faces, walls and contact correct those, substepping
+   * rebuilds them; none of them owns the arrays, this class does. Output
+   * reads a node's mass and velocity from it.
+   */
+  template <int dim>
+  class NodalState
+  {
+  public:
+    using Layout = NodalLayout<dim>;
+
+    /// @p field_of_body: the velocity field of each body (all 0 with one
+    /// field); @p body_slot: where a point's data holds its body index;
+    /// @p mass_scaling: the factor the stored nodal masses carry.
+    NodalState(const unsigned int        n_fields,
+               std::vector<unsigned int> field_of_body,
+               const unsigned int        body_slot,
+               const double              mass_scaling);
+
+    /// (Re)create both arrays on @p grid's partition (after
+    /// BackgroundGrid::repartition()).
+    void
+    reinit(const BackgroundGrid<dim> &grid);
+
+    /// Offset of node @p node's field @p field in the arrays, in units of
+    /// their per-field stride.
+    unsigned int
+    slot_of(const unsigned int node, const unsigned int field) const
+    {
+      return Layout::slot_of(node, field, n_fields);
+    }
+
+    /// The field a point (its data @p q) scatters into and gathers from.
+    unsigned int
+    field_of(const double *q) const
+    {
+      return n_fields == 1
+               ? 0
+               : field_of_body[static_cast<unsigned int>(q[body_slot])];
+    }
+
+    /// Mass (without the mass scaling) and latest velocity (of the centre
+    /// of mass of its fields) of locally owned node @p i.
+    double
+    mass(const unsigned int i) const;
+    double
+    velocity(const unsigned int i, const unsigned int d) const;
+
+    /// Velocity fields per node: 1, or 1 + the bodies with their own.
+    const unsigned int              n_fields;
+    const std::vector<unsigned int> field_of_body;
+    /// [m, mv, f] per node and field, summed over the ranks with
+    /// compress(add).
+    LinearAlgebra::distributed::Vector<double> sums;
+    /// [m, v, v*] per node and field (mass, velocity before and after the
+    /// force update), read through ghost values.
+    LinearAlgebra::distributed::Vector<double> velocities;
+
+  private:
+    const unsigned int body_slot;
+    const double       mass_scaling;
+  };
+} // namespace mpm
+
+#endif
