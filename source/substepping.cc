@@ -224,11 +224,12 @@ namespace mpm
         const unsigned int       field = nodes.field_of(q);
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           {
-            double *node = g + n_sums * nodes.slot_of(s.nodes[v], field);
+            double *node =
+              g + Layout::n_sums * nodes.slot_of(s.nodes[v], field);
             const Tensor<1, dim> pk = mv + mC * s.node_offset(v);
-            node[mass] += s.weights[v] * m;
+            node[Layout::mass] += s.weights[v] * m;
             for (unsigned int d = 0; d < dim; ++d)
-              node[momentum + d] += s.weights[v] * pk[d];
+              node[Layout::momentum + d] += s.weights[v] * pk[d];
           }
       });
     nodes.sums.compress(VectorOperation::add);
@@ -246,11 +247,11 @@ namespace mpm
       // velocity. The projection is no work done on the bodies: the
       // substeps counted that already.
       const double work_so_far = integrator.step_work;
-      integrator.grid_velocities_from_momentum(v_new);
+      integrator.grid_velocities_from_momentum(Layout::v_new);
       if (prm.least_squares)
         {
           solve_least_squares_reconstruction(basis, Dt);
-          integrator.apply_velocity_constraints(v_new);
+          integrator.apply_velocity_constraints(Layout::v_new);
           nodes.velocities.update_ghost_values();
         }
       integrator.step_work = work_so_far;
@@ -259,9 +260,9 @@ namespace mpm
     // operations make of it.
     double            *u         = nodes.velocities.get_values();
     const unsigned int n_entries = n_local_entries(nodes.velocities);
-    for (unsigned int i = 0; i < n_entries; i += n_velocities)
+    for (unsigned int i = 0; i < n_entries; i += Layout::n_velocities)
       for (unsigned int d = 0; d < dim; ++d)
-        u[i + v_old + d] = u[i + v_new + d];
+        u[i + Layout::v_old + d] = u[i + Layout::v_new + d];
   }
 
 
@@ -311,7 +312,7 @@ namespace mpm
     const double             *u = nodes.velocities.get_values();
     std::vector<unsigned int> massless;
     for (unsigned int i = 0; i < owned.n_elements(); ++i)
-      if (!(u[n_velocities * i + node_mass] > 0))
+      if (!(u[Layout::n_velocities * i + Layout::node_mass] > 0))
         massless.push_back(i);
     for (const unsigned int i : massless)
       pattern.add(global[i], global[i]);
@@ -363,7 +364,8 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       {
         for (unsigned int i = 0; i < owned.n_elements(); ++i)
-          solution[d](global[i]) = v_grid[n_velocities * i + v_new + d];
+          solution[d](global[i]) =
+            v_grid[Layout::n_velocities * i + Layout::v_new + d];
         solution[d].compress(VectorOperation::insert);
         SolverControl control(1000, 1e-12 * rhs[d].l2_norm());
         SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
@@ -387,7 +389,8 @@ namespace mpm
           }
         least_squares_iterations += control.last_step();
         for (unsigned int i = 0; i < owned.n_elements(); ++i)
-          v_grid[n_velocities * i + v_new + d] = solution[d](global[i]);
+          v_grid[Layout::n_velocities * i + Layout::v_new + d] =
+            solution[d](global[i]);
       }
   }
 
@@ -414,16 +417,17 @@ namespace mpm
              i < nodes.n_fields * grid.n_locally_owned_nodes();
              ++i)
           energy +=
-            0.5 * u[n_velocities * i + node_mass] *
-            Fields::vector<dim>(u + n_velocities * i + v_new).norm_square();
+            0.5 * u[Layout::n_velocities * i + Layout::node_mass] *
+            Fields::vector<dim>(u + Layout::n_velocities * i + Layout::v_new)
+              .norm_square();
         energy = Utilities::MPI::sum(energy, comm);
         if (energy < macro_kinetic_energy)
           {
             double            *w         = nodes.velocities.get_values();
             const unsigned int n_entries = n_local_entries(nodes.velocities);
-            for (unsigned int i = 0; i < n_entries; i += n_velocities)
+            for (unsigned int i = 0; i < n_entries; i += Layout::n_velocities)
               for (unsigned int d = 0; d < dim; ++d)
-                w[i + v_new + d] = 0;
+                w[i + Layout::v_new + d] = 0;
             reset  = true;
             energy = 0;
           }
@@ -444,17 +448,18 @@ namespace mpm
     const FieldLayout &l      = points.layout();
     const double      *u_all  = nodes.velocities.get_values();
     const bool         apic   = l.affine_velocity != FieldLayout::absent;
-    const unsigned int stride = nodes.n_fields * n_velocities;
+    const unsigned int stride = nodes.n_fields * Layout::n_velocities;
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
     double                                     largest_here = 0;
     integrator.for_each_point(basis, [&](auto &p, double *q, const auto &s) {
-      const double  *u = u_all + n_velocities * nodes.field_of(q);
+      const double  *u = u_all + Layout::n_velocities * nodes.field_of(q);
       Tensor<1, dim> v_reconstructed, v_reset;
       for (unsigned int v = 0; v < Basis::n_nodes; ++v)
         {
           const double *node = u + stride * s.nodes[v];
-          v_reconstructed += s.weights[v] * Fields::vector<dim>(node + v_old);
-          v_reset += s.weights[v] * Fields::vector<dim>(node + v_new);
+          v_reconstructed +=
+            s.weights[v] * Fields::vector<dim>(node + Layout::v_old);
+          v_reset += s.weights[v] * Fields::vector<dim>(node + Layout::v_new);
         }
       const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
       largest_here =
@@ -463,9 +468,9 @@ namespace mpm
         {
           Fields::store(v_reset, q + l.velocity);
           if (apic)
-            Fields::store(
-              apic_velocity_gradient<dim>(basis, s, u, stride, v_new, affine),
-              q + l.affine_velocity);
+            Fields::store(apic_velocity_gradient<dim>(
+                            basis, s, u, stride, Layout::v_new, affine),
+                          q + l.affine_velocity);
         }
     });
     mismatch =

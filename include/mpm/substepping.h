@@ -96,14 +96,7 @@ namespace mpm
     restore_state(const RunState &state);
 
   private:
-    using Layout                               = NodalLayout<dim>;
-    static constexpr unsigned int mass         = Layout::mass;
-    static constexpr unsigned int momentum     = Layout::momentum;
-    static constexpr unsigned int n_sums       = Layout::n_sums;
-    static constexpr unsigned int node_mass    = Layout::node_mass;
-    static constexpr unsigned int v_old        = Layout::v_old;
-    static constexpr unsigned int v_new        = Layout::v_new;
-    static constexpr unsigned int n_velocities = Layout::n_velocities;
+    using Layout = NodalLayout<dim>;
 
     /// Record x_p^n and start each point's deformation increment at I.
     void
