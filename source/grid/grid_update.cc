@@ -44,8 +44,8 @@ namespace mpm
     double            *u       = nodes.velocities.get_values();
     const double       inertia = prm.mass_scaling;
     // The fields of a node follow each other: one loop over all entries.
-    for (unsigned int i = 0; i < nodes.n_fields * grid.n_locally_owned_nodes();
-         ++i)
+    const unsigned int n_slots = nodes.n_fields * grid.n_locally_owned_nodes();
+    for (unsigned int i = 0; i < n_slots; ++i)
       {
         const double *node  = g + n_sums * i;
         double       *vel   = u + n_velocities * i;
@@ -74,10 +74,10 @@ namespace mpm
     const double alpha          = prm.local_damping;
     // Newmark (see gather_to_particles): v_new is the velocity that moves
     // the points, v_old + (gamma + 1/2) dt a.
-    const bool   newmark       = prm.newmark_gamma != 0.5;
-    const double motion_factor = prm.newmark_gamma + 0.5;
-    for (unsigned int i = 0; i < nodes.n_fields * grid.n_locally_owned_nodes();
-         ++i)
+    const bool         newmark       = prm.newmark_gamma != 0.5;
+    const double       motion_factor = prm.newmark_gamma + 0.5;
+    const unsigned int n_slots = nodes.n_fields * grid.n_locally_owned_nodes();
+    for (unsigned int i = 0; i < n_slots; ++i)
       {
         const double *node = g + n_sums * i;
         double       *vel  = u + n_velocities * i;
@@ -96,9 +96,7 @@ namespace mpm
       }
     // A loop of its own, so that the plain step's stays as it was.
     if (newmark)
-      for (unsigned int i = 0;
-           i < nodes.n_fields * grid.n_locally_owned_nodes();
-           ++i)
+      for (unsigned int i = 0; i < n_slots; ++i)
         {
           double *vel = u + n_velocities * i;
           for (unsigned int d = 0; d < dim; ++d)
@@ -110,9 +108,7 @@ namespace mpm
     if (virtual_fluid)
       {
         virtual_fluid->add_impulse(dt * fluid_force_total);
-        for (unsigned int i = 0;
-             i < nodes.n_fields * grid.n_locally_owned_nodes();
-             ++i)
+        for (unsigned int i = 0; i < n_slots; ++i)
           for (unsigned int d = 0; d < dim; ++d)
             step_work += 0.5 * dt * fluid_force.local_element(dim * i + d) *
                          (u[n_velocities * i + v_old + d] +
