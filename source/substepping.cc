@@ -413,9 +413,7 @@ namespace mpm
       {
         const double *u      = nodes.velocities.get_values();
         double        energy = 0;
-        for (unsigned int i = 0;
-             i < nodes.n_fields * grid.n_locally_owned_nodes();
-             ++i)
+        for (unsigned int i = 0; i < nodes.n_owned_slots(); ++i)
           energy +=
             0.5 * u[Layout::n_velocities * i + Layout::node_mass] *
             Fields::vector<dim>(u + Layout::n_velocities * i + Layout::v_new)

@@ -130,7 +130,8 @@ namespace mpm
     void
     gather_velocity(const Basis &basis, const double Dt, const bool reset);
 
-    TimeIntegrator<dim>             &integrator;
+    TimeIntegrator<dim> &integrator;
+    /// The integrator's parts the macro step reads most, named as there.
     const IntegratorParameters<dim> &prm;
     const BackgroundGrid<dim>       &grid;
     MaterialPoints<dim>             &points;

@@ -44,7 +44,7 @@ namespace mpm
     double            *u       = nodes.velocities.get_values();
     const double       inertia = prm.mass_scaling;
     // The fields of a node follow each other: one loop over all entries.
-    const unsigned int n_slots = nodes.n_fields * grid.n_locally_owned_nodes();
+    const unsigned int n_slots = nodes.n_owned_slots();
     for (unsigned int i = 0; i < n_slots; ++i)
       {
         const double *node  = g + n_sums * i;
@@ -76,7 +76,7 @@ namespace mpm
     // the points, v_old + (gamma + 1/2) dt a.
     const bool         newmark       = prm.newmark_gamma != 0.5;
     const double       motion_factor = prm.newmark_gamma + 0.5;
-    const unsigned int n_slots = nodes.n_fields * grid.n_locally_owned_nodes();
+    const unsigned int n_slots       = nodes.n_owned_slots();
     for (unsigned int i = 0; i < n_slots; ++i)
       {
         const double *node = g + n_sums * i;

@@ -24,6 +24,7 @@ namespace mpm
   {
     sums.reinit(grid.make_partitioner(n_fields * Layout::n_sums));
     velocities.reinit(grid.make_partitioner(n_fields * Layout::n_velocities));
+    owned_slots = n_fields * grid.n_locally_owned_nodes();
   }
 
 

@@ -415,8 +415,7 @@ namespace mpm
 
     double *g         = nodes.sums.get_values();
     fluid_force_total = Tensor<1, dim>();
-    for (unsigned int i = 0; i < nodes.n_fields * grid.n_locally_owned_nodes();
-         ++i)
+    for (unsigned int i = 0; i < nodes.n_owned_slots(); ++i)
       for (unsigned int d = 0; d < dim; ++d)
         {
           const double f = fluid_force.local_element(dim * i + d);

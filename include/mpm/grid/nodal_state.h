@@ -49,6 +49,14 @@ namespace mpm
       return Layout::slot_of(node, field, n_fields);
     }
 
+    /// The locally owned node fields (owned nodes times n_fields): the
+    /// length, in strides, of the owned part of either array.
+    unsigned int
+    n_owned_slots() const
+    {
+      return owned_slots;
+    }
+
     /// The field a point (its data @p q) scatters into and gathers from.
     unsigned int
     field_of(const double *q) const
@@ -78,6 +86,7 @@ namespace mpm
   private:
     const unsigned int body_slot;
     const double       mass_scaling;
+    unsigned int       owned_slots = 0;
   };
 } // namespace mpm
 
