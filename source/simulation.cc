@@ -642,9 +642,13 @@ namespace mpm
     // Before anything is written: a run that fails keeps its last good
     // output.
     stop_if_not_finite(s, extra);
-    const auto [work, absolute_work] = integrator->external_work();
-    const auto [put_in, residual]    = energy_guard->check(
-      s, work, absolute_work, integrator->stress_work(), integrator->time());
+    const auto [work, absolute_work] = integrator->external_loads().totals();
+    const auto [put_in, residual] =
+      energy_guard->check(s,
+                          work,
+                          absolute_work,
+                          integrator->stress_update().absorbed_work(),
+                          integrator->time());
     if (integrator_parameters.energy_residual)
       extra.push_back(put_in > 0 ? residual / put_in : 0.);
     // A body without points (or without a deposit) has no extents: the

@@ -1,6 +1,6 @@
 // The stress stage of the step: F-bar's volume average, each body's
 // material update, and the stress power they absorb (the energy residual).
-#include <mpm/time_integrator.h>
+#include <mpm/stress_update.h>
 
 #include <array>
 #include <vector>
@@ -8,12 +8,30 @@
 namespace mpm
 {
   template <int dim>
-  void
-  TimeIntegrator<dim>::update_stresses(const double dt)
+  StressUpdate<dim>::StressUpdate(const IntegratorParameters<dim> &parameters,
+                                  const BackgroundGrid<dim>       &grid,
+                                  MaterialPoints<dim>             &points,
+                                  TimerOutput                     &timer,
+                                  MPI_Comm                         comm)
+    : f_bar(parameters.f_bar)
+    , energy_residual(parameters.energy_residual)
+    , grid(grid)
+    , points(points)
+    , timer(timer)
+    , comm(comm)
   {
-    if (prm.f_bar)
+    for (const auto &body : points.bodies())
+      density_of_body.push_back(body.deformable_density());
+  }
+
+
+  template <int dim>
+  void
+  StressUpdate<dim>::update(const double dt)
+  {
+    if (f_bar)
       average_volume_change_over_cells(dt);
-    if (prm.energy_residual)
+    if (energy_residual)
       add_stress_power(dt, true);
     {
       TimerOutput::Scope scope(timer, "stress");
@@ -22,10 +40,8 @@ namespace mpm
           points.bodies()[b].material->update_stresses(
             points.handler(), points.layout(), b, dt, comm);
     }
-    if (prm.energy_residual)
+    if (energy_residual)
       add_stress_power(dt, false);
-    if (points.layout().macro_step != FieldLayout::absent)
-      substepper.accumulate_increment(dt);
   }
 
 
@@ -50,7 +66,7 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::average_volume_change_over_cells(const double dt)
+  StressUpdate<dim>::average_volume_change_over_cells(const double dt)
   {
     TimerOutput::Scope               scope(timer, "F-bar");
     const FieldLayout               &l         = points.layout();
@@ -137,7 +153,7 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::add_stress_power(const double dt, const bool before)
+  StressUpdate<dim>::add_stress_power(const double dt, const bool before)
   {
     TimerOutput::Scope scope(timer, "energy residual");
     const FieldLayout &l     = points.layout();
@@ -157,29 +173,38 @@ namespace mpm
           }
         power += V * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
       }
-    absorbed_work += 0.5 * dt * power;
+    absorbed += 0.5 * dt * power;
   }
 
 
   template <int dim>
   double
-  TimeIntegrator<dim>::stress_work() const
+  StressUpdate<dim>::absorbed_work() const
   {
-    return Utilities::MPI::sum(absorbed_work, comm);
+    return Utilities::MPI::sum(absorbed, comm);
   }
 
 
-  // Members of TimeIntegrator defined here, instantiated for each dimension
-  // (the class itself is instantiated in time_integrator.cc).
-#define MPM_INSTANTIATE(dim)                                           \
-  template void TimeIntegrator<dim>::update_stresses(const double);    \
-  template void TimeIntegrator<dim>::average_volume_change_over_cells( \
-    const double);                                                     \
-  template void   TimeIntegrator<dim>::add_stress_power(const double,  \
-                                                      const bool);   \
-  template double TimeIntegrator<dim>::stress_work() const;
-  MPM_INSTANTIATE(1)
-  MPM_INSTANTIATE(2)
-  MPM_INSTANTIATE(3)
-#undef MPM_INSTANTIATE
+  template <int dim>
+  void
+  StressUpdate<dim>::save_state(RunState &state) const
+  {
+    state.values["stress_work"] = absorbed_work();
+  }
+
+
+  template <int dim>
+  void
+  StressUpdate<dim>::restore_state(const RunState &state)
+  {
+    if (energy_residual)
+      absorbed = Utilities::MPI::this_mpi_process(comm) == 0
+                   ? state.get("stress_work")
+                   : 0.;
+  }
+
+
+  template class StressUpdate<1>;
+  template class StressUpdate<2>;
+  template class StressUpdate<3>;
 } // namespace mpm

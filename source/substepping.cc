@@ -114,9 +114,7 @@ namespace mpm
                     << "CFL condition";
                 throw RunError(msg.str());
               }
-            integrator.explicit_step(dt);
-            if (integrator.after_substep)
-              integrator.after_substep();
+            substep(dt);
             if (last)
               break;
           }
@@ -124,9 +122,7 @@ namespace mpm
           {
             const double n_left =
               std::max(1., std::ceil(remaining / limit * (1 - 1e-12)));
-            integrator.explicit_step(remaining / n_left);
-            if (integrator.after_substep)
-              integrator.after_substep();
+            substep(remaining / n_left);
             if (n_left == 1)
               break;
           }
@@ -157,6 +153,17 @@ namespace mpm
    * product of the increments is F^(n+1) (F^n)^-1 exactly, for every point,
    * whether or not its material stores F.
    */
+  template <int dim>
+  void
+  Substepper<dim>::substep(const double dt)
+  {
+    integrator.explicit_step(dt);
+    accumulate_increment(dt);
+    if (integrator.after_substep)
+      integrator.after_substep();
+  }
+
+
   template <int dim>
   void
   Substepper<dim>::accumulate_increment(const double dt)
@@ -246,7 +253,7 @@ namespace mpm
       // there), then projected on the boundary conditions like any grid
       // velocity. The projection is no work done on the bodies: the
       // substeps counted that already.
-      const double work_so_far = integrator.step_work;
+      const double work_so_far = integrator.loads.step_work_so_far();
       integrator.grid_velocities_from_momentum(Layout::v_new);
       if (prm.least_squares)
         {
@@ -254,7 +261,7 @@ namespace mpm
           integrator.apply_velocity_constraints(Layout::v_new);
           nodes.velocities.update_ghost_values();
         }
-      integrator.step_work = work_so_far;
+      integrator.loads.set_step_work(work_so_far);
     });
     // v_old keeps the reconstruction as it was, v_new is what the
     // operations make of it.

@@ -97,10 +97,19 @@ namespace mpm
             fields_of_bodies(this->contact, points.bodies().size()),
             points.layout().body,
             prm.mass_scaling)
+    , stresses(parameters, grid, points, timer, comm)
     , usf_contact_rule(prm.scheme == UpdateScheme::USF && this->contact &&
                        this->contact->deformable_bodies_touch())
     , timer(timer)
     , comm(comm)
+    , loads(points,
+            rigid_walls,
+            wave_modulus_of_body,
+            t,
+            n_steps,
+            failure,
+            timer,
+            comm)
     , substepper(*this)
   {
     setup_nodal_data();
@@ -115,7 +124,7 @@ namespace mpm
         fixed_inverse_density_of_body.push_back(
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
         // A rigid body's points keep their volume: no guard.
-        density_of_body.push_back(body.rigid_velocity ? 0. : body.density);
+        density_of_body.push_back(body.deformable_density());
         if (!body.rigid_velocity && body.material->viscosity() > 0)
           {
             const double limit =
@@ -128,10 +137,6 @@ namespace mpm
                 viscous_body      = &body - points.bodies().data();
               }
           }
-        body_forces.push_back(body.body_force.get());
-        pressures.push_back(body.pressure.get());
-        tractions.push_back(body.traction.get());
-        has_body_forces = has_body_forces || body.body_force;
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
     // Nodal masses are stored with the mass scaling (see
@@ -233,9 +238,9 @@ namespace mpm
   {
     with_scene_basis([&](const auto &basis) { advance(basis, dt); });
     raise_if_any_failed(failure, comm);
-    close_external_work(dt);
+    loads.close_step(dt);
     // After the step's loads did their work at the velocities they saw.
-    keep_points_in_front_of_rigid_walls(t + dt);
+    loads.keep_points_in_front_of_rigid_walls(t + dt);
 
     {
       TimerOutput::Scope scope(timer, "relocate");
@@ -253,15 +258,16 @@ namespace mpm
   TimeIntegrator<dim>::advance(const Basis &basis, const double dt)
   {
     if (points.layout().point_load != FieldLayout::absent)
-      make_point_loads(dt);
-    const double work_before = step_work; // see USF with cpGIMP
+      loads.make_point_loads(dt);
+    // See USF with cpGIMP.
+    const double work_before = loads.step_work_so_far();
     switch (prm.scheme)
       {
         case UpdateScheme::USL:
           scatter_masses_then_forces(basis);
           grid_velocities_after_forces(dt);
           gather_to_particles(basis, dt, true);
-          update_stresses(dt);
+          stresses.update(dt);
           break;
         case UpdateScheme::USF:
           // With deformable bodies in contact, the forces of the stress the
@@ -272,7 +278,7 @@ namespace mpm
           if (usf_contact_rule)
             strain_rate_velocities_with_contact(dt);
           update_kinematics(basis, dt, usf_contact_rule ? v_new : v_old);
-          update_stresses(dt);
+          stresses.update(dt);
           if (prm.basis == BasisType::cpgimp)
             {
               // The domains follow F, which the kinematics just changed:
@@ -281,7 +287,7 @@ namespace mpm
               // (almost) no mass (v_notch: a point thrown out of the grid).
               // The first grid velocities only gave the strain rate, and
               // their constraints do no work.
-              step_work = work_before;
+              loads.set_step_work(work_before);
               scatter_to_grid(basis, true, true);
               grid_velocities_from_momentum(v_old);
             }
@@ -297,7 +303,7 @@ namespace mpm
           scatter_to_grid(basis, true, false);
           grid_velocities_from_momentum(v_new, true);
           update_kinematics(basis, dt, v_new);
-          update_stresses(dt);
+          stresses.update(dt);
           break;
       }
   }
@@ -309,14 +315,12 @@ namespace mpm
   {
     // Sums over the ranks: a restart on another number of ranks keeps them
     // on its first.
-    const auto [w, a]              = external_work();
-    state.values["external_work"]  = w;
-    state.values["absolute_work"]  = a;
+    loads.save_state(state);
     state.values["time"]           = t;
     state.values["last_dt"]        = last_dt;
     state.values["steps"]          = n_steps;
     state.values["removed_points"] = n_removed;
-    state.values["stress_work"]    = stress_work();
+    stresses.save_state(state);
     if (prm.macro_time_step > 0)
       substepper.save_state(state);
   }
@@ -326,15 +330,12 @@ namespace mpm
   void
   TimeIntegrator<dim>::restore_state(const RunState &state)
   {
-    t                = state.get("time");
-    last_dt          = state.get("last_dt");
-    n_steps          = state.get("steps");
-    n_removed        = state.get("removed_points");
-    const bool first = Utilities::MPI::this_mpi_process(comm) == 0;
-    work             = first ? state.get("external_work") : 0.;
-    absolute_work    = first ? state.get("absolute_work") : 0.;
-    if (prm.energy_residual)
-      absorbed_work = first ? state.get("stress_work") : 0.;
+    t         = state.get("time");
+    last_dt   = state.get("last_dt");
+    n_steps   = state.get("steps");
+    n_removed = state.get("removed_points");
+    loads.restore_state(state);
+    stresses.restore_state(state);
     if (prm.macro_time_step > 0)
       substepper.restore_state(state);
   }

@@ -42,11 +42,6 @@ namespace mpm
     void
     macro_step(const double Dt);
 
-    /// Multiply each point's deformation increment by this substep's
-    /// I + dt L (after F-bar: the increment the stress update used).
-    void
-    accumulate_increment(const double dt);
-
     /**
      * The grid velocity on the start-of-step configuration from the
      * points' secant motion over a macro step of length @p Dt (seed 003,
@@ -101,6 +96,14 @@ namespace mpm
     /// Record x_p^n and start each point's deformation increment at I.
     void
     begin();
+    /// One explicit substep of @p dt and its deformation increment.
+    void
+    substep(const double dt);
+    /// Multiply each point's deformation increment by this substep's
+    /// I + dt L (after F-bar: the increment the stress update used, which
+    /// the points keep until the next step's kinematics).
+    void
+    accumulate_increment(const double dt);
     /// Swap each point's position with the one in its 'macro step' field
     /// (x^(n+1) <-> x^n) and put the points in their cells again.
     void

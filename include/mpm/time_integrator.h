@@ -14,10 +14,12 @@
 #include <mpm/boundary_conditions/virtual_fluid.h>
 #include <mpm/checkpoint.h>
 #include <mpm/contact/multi_field.h>
+#include <mpm/external_loads.h>
 #include <mpm/grid/nodal_layout.h>
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
+#include <mpm/stress_update.h>
 #include <mpm/substepping.h>
 
 #include <array>
@@ -176,15 +178,12 @@ namespace mpm
     void
     restore_state(const RunState &state);
 
-    /**
-     * The work done on the bodies since the start by everything outside
-     * them but gravity (loads, body forces, rigid walls and bodies,
-     * velocity regions, the virtual fluid), and the sum of its absolute
-     * step increments; summed over the ranks (collective). The energy
-     * guard's external side of the balance.
-     */
-    std::array<double, 2>
-    external_work() const;
+    /// The loads and the account of the external work.
+    const ExternalLoads<dim> &
+    external_loads() const
+    {
+      return loads;
+    }
 
     /**
      * The two sides of the identity that makes the internal forces' work
@@ -201,13 +200,12 @@ namespace mpm
       const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
         &w);
 
-    /**
-     * The work the deformable bodies' stresses absorbed since the start
-     * (the stress power, summed over the steps; 'Simulation/energy
-     * residual', else 0), summed over the ranks (collective).
-     */
-    double
-    stress_work() const;
+    /// The stress stage (the work the stresses absorbed).
+    const StressUpdate<dim> &
+    stress_update() const
+    {
+      return stresses;
+    }
 
   private:
     friend class Substepper<dim>;
@@ -227,11 +225,6 @@ namespace mpm
     /// substepping).
     void
     explicit_step(const double dt);
-    /// Every rigid wall puts back the points that fell behind it by @p
-    /// time (RigidWall::put_back); stops the run if walls pinch a point
-    /// between them.
-    void
-    keep_points_in_front_of_rigid_walls(const double time);
     /// The explicit step's length: the CFL limit, or the fixed time step
     /// (checked against it).
     double
@@ -279,12 +272,6 @@ namespace mpm
     update_kinematics(const Basis       &basis,
                       const double       dt,
                       const unsigned int slot);
-    void
-    update_stresses(const double dt);
-    /// F-bar: replace each point's volume change over the step by that of
-    /// its body's points in its cell (see there).
-    void
-    average_volume_change_over_cells(const double dt);
     /// Multi-body contact and rigid bodies at every owned node where a
     /// body has a field of its own; @p dt > 0 at the force update, where
     /// the rigid bodies' reactions are measured and where the fields press
@@ -314,35 +301,6 @@ namespace mpm
     /// Half-width of a point's domain in cells, per direction (GIMP).
     Tensor<1, dim>
     domain_half_width(const double *q) const;
-    /// Body force per unit mass b(X, t) of a point (without gravity).
-    Tensor<1, dim>
-    body_force(const double *q) const;
-    /// Note a failure naming the parameter if a load expression of body
-    /// @p body (@p name: "traction", ...) has a value of @p magnitude
-    /// beyond largest_input (or not finite) at @p x.
-    void
-    check_load(const double       magnitude,
-               const unsigned int body,
-               const char        *name,
-               const Point<dim>  &x);
-    /// Fill each point's 'point load' field for the coming step: the
-    /// pressure and traction on a loaded surface at the point's position
-    /// and the rigid wall's contact force. A pass of its own, only in scenes
-    /// with such loads, so that the scatter adds one vector and needs no
-    /// position.
-    void
-    make_point_loads(const double dt);
-    /// Add @p weight times the point loads' power at the points' current
-    /// velocities to the step's external work.
-    void
-    add_point_load_work(const double weight);
-    /// End the step's account of external work (see there).
-    void
-    close_external_work(const double dt);
-    /// Half of the step's stress power V sigma : L dt (see there), at the
-    /// stress before the update (@p before) or after it.
-    void
-    add_stress_power(const double dt, const bool before);
     /// L at a point from the nodal velocities in @p slot of the nodal
     /// array @p u (the point's field, node stride @p stride). Nodes of
     /// mass <= @p light_mass are left out (the small-mass guard where the
@@ -404,6 +362,8 @@ namespace mpm
     MultiFieldContact<dim> *contact;
     /// The nodal arrays and the velocity fields they hold per node.
     NodalState<dim> nodes;
+    /// F-bar, the materials' update and the stress power.
+    StressUpdate<dim> stresses;
     /// USF with deformable bodies that touch (see
     /// strain_rate_velocities_with_contact).
     const bool usf_contact_rule;
@@ -427,9 +387,6 @@ namespace mpm
     std::vector<double> wave_modulus_of_body;
     /// dM/dp of each body (Material::wave_modulus_pressure_slope).
     std::vector<double> wave_modulus_pressure_slope_of_body;
-    /// Each body's pressure and traction on its loaded surface (null:
-    /// none).
-    std::vector<FunctionParser<dim> *> pressures, tractions;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
     std::vector<double> fixed_inverse_density_of_body;
     /// rho0 of each body: J = V rho0 / m for the guard on J.
@@ -441,9 +398,7 @@ namespace mpm
     unsigned int viscous_body = 0;
     /// uGIMP/cpGIMP: initial domain half-width of each body's points, in
     /// cells: half of 1 / (points per cell).
-    std::vector<double>                initial_half_width_of_body;
-    std::vector<FunctionParser<dim> *> body_forces; ///< null: none
-    bool                               has_body_forces = false;
+    std::vector<double> initial_half_width_of_body;
 
     double                min_nodal_mass;
     double                t         = 0;
@@ -451,11 +406,9 @@ namespace mpm
     unsigned int          n_steps   = 0;
     types::particle_index n_removed = 0;
     std::string           failure; ///< first diagnosis of this step
-    /// This rank's share of the external work: in this step, and since the
-    /// start with its absolute sum; body forces' power in the last scatter.
-    double step_work = 0, work = 0, absolute_work = 0, body_force_power = 0;
-    /// This rank's share of stress_work().
-    double absorbed_work = 0;
+    /// The loads and the external work (with the clock and the diagnosis
+    /// above, which it reads and sets).
+    ExternalLoads<dim> loads;
     /// The macro steps, if the scene sets a macro time step.
     Substepper<dim> substepper;
   };

@@ -126,47 +126,6 @@ namespace mpm
 
 
 
-  /**
-   * A load given by an expression (pressure, traction, body force) can
-   * only be checked where it is evaluated. A magnitude beyond
-   * largest_input (or not finite) is a mistake in the scene: it is named
-   * here, before the forces it makes overflow the point's motion into a
-   * diagnosis that names no parameter.
-   */
-  template <int dim>
-  inline void
-  TimeIntegrator<dim>::check_load(const double       magnitude,
-                                  const unsigned int body,
-                                  const char        *name,
-                                  const Point<dim>  &x)
-  {
-    if (magnitude <= largest_input || !failure.empty())
-      return;
-    std::ostringstream msg;
-    msg << "step " << n_steps << ", t = " << t << ": parameter '"
-        << points.bodies()[body].name << "/" << name << "' is " << magnitude
-        << " in magnitude at (" << x << "): a load must be finite and at most "
-        << largest_input << " in magnitude (Pa, or m/s^2 for a body force)";
-    failure = msg.str();
-  }
-
-
-  template <int dim>
-  inline Tensor<1, dim>
-  TimeIntegrator<dim>::body_force(const double *q) const
-  {
-    const FieldLayout &l = points.layout();
-    Tensor<1, dim>     b;
-    if (FunctionParser<dim> *f = body_forces[q[l.body]])
-      {
-        const Point<dim> X(Fields::vector<dim>(q + l.initial_position));
-        for (unsigned int d = 0; d < dim; ++d)
-          b[d] = f->value(X, d);
-      }
-    return b;
-  }
-
-
   template <int dim>
   template <typename Stencil>
   inline Tensor<2, dim>

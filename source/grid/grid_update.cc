@@ -110,9 +110,9 @@ namespace mpm
         virtual_fluid->add_impulse(dt * fluid_force_total);
         for (unsigned int i = 0; i < n_slots; ++i)
           for (unsigned int d = 0; d < dim; ++d)
-            step_work += 0.5 * dt * fluid_force.local_element(dim * i + d) *
-                         (u[n_velocities * i + v_old + d] +
-                          u[n_velocities * i + v_new + d]);
+            loads.add_work(0.5 * dt * fluid_force.local_element(dim * i + d) *
+                           (u[n_velocities * i + v_old + d] +
+                            u[n_velocities * i + v_new + d]));
       }
   }
 
@@ -130,10 +130,8 @@ namespace mpm
     faces.apply(u, nodes.n_fields, slot, dt);
     if (velocity_region.enabled())
       for (unsigned int f = 0; f < nodes.n_fields; ++f)
-        step_work += velocity_region.enforce(u + n_velocities * f,
-                                             nodes.n_fields * n_velocities,
-                                             slot,
-                                             dt);
+        loads.add_work(velocity_region.enforce(
+          u + n_velocities * f, nodes.n_fields * n_velocities, slot, dt));
   }
 
 
@@ -194,7 +192,7 @@ namespace mpm
     // The rigid body's reaction works at its velocity (an upper bound:
     // friction's share is dissipated), at both velocity updates.
     for (unsigned int r = 0; r < impulse.size(); ++r)
-      step_work += impulse[r] * contact->rigid_velocity_of(r);
+      loads.add_work(impulse[r] * contact->rigid_velocity_of(r));
   }
 
 

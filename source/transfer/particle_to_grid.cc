@@ -155,7 +155,7 @@ namespace mpm
     const Tensor<1, dim> gravity = prm.gravity;
     // Local copies: the compiler cannot tell that the members do not change
     // while the loop writes the nodal sums through a double *.
-    const bool with_body_forces         = has_body_forces;
+    const bool with_body_forces         = loads.has_body_forces();
     double     power                    = 0; // of the body forces
     const bool with_point_loads         = l.point_load != FieldLayout::absent;
     const bool with_surface_loads       = l.load_moment != FieldLayout::absent;
@@ -163,9 +163,7 @@ namespace mpm
     const unsigned int *fields_of_body  = nodes.field_of_body.data();
     // The nodal masses of the guard (light_mass > 0), ghosted.
     const double *velocities = nodes.velocities.get_values();
-    for (auto *f : body_forces)
-      if (f != nullptr)
-        f->set_time(t);
+    loads.set_body_force_time(t);
     // Compiled once for one field and once for several, so that a scene
     // without contact carries nothing of it.
     // The guard's gradients (light_node_gradients), filled only where a
@@ -250,11 +248,11 @@ namespace mpm
             Tensor<1, dim> mg        = m * gravity;
             if (with_body_forces)
               {
-                const Tensor<1, dim> b = body_force(q);
-                check_load(b.norm(),
-                           q[l.body],
-                           "body force",
-                           p->get_location());
+                const Tensor<1, dim> b = loads.body_force(q);
+                loads.check_load(b.norm(),
+                                 q[l.body],
+                                 "body force",
+                                 p->get_location());
                 const Tensor<1, dim> mb = m * b;
                 mg += mb;
                 power += mb * Fields::vector<dim>(q + l.velocity);
@@ -334,7 +332,7 @@ namespace mpm
         scatter(transfer, std::false_type());
     });
     if (forces)
-      body_force_power = power;
+      loads.set_body_force_power(power);
     nodes.sums.compress(VectorOperation::add);
     if (with_gradients)
       contact_data.compress(VectorOperation::add);

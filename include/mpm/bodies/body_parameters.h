@@ -109,6 +109,14 @@ namespace mpm
     bool
     is_prestressed() const;
 
+    /// The density J = V rho0 / m refers to: 0 for a rigid body, whose
+    /// points keep their volume and have no stress to update.
+    double
+    deformable_density() const
+    {
+      return rigid_velocity ? 0. : density;
+    }
+
     /// Does a pressure or traction act on the body's surface?
     bool
     has_surface_loads() const

@@ -5,8 +5,7 @@
 // The scatter adds the loads to the nodal forces; the velocity region,
 // contact with rigid bodies and the virtual fluid add their work where
 // they act on the grid.
-#include <mpm/time_integrator.h>
-#include <mpm/time_integrator.templates.h>
+#include <mpm/external_loads.h>
 
 #include <cmath>
 #include <sstream>
@@ -15,8 +14,47 @@
 namespace mpm
 {
   template <int dim>
+  ExternalLoads<dim>::ExternalLoads(
+    MaterialPoints<dim>                 &points,
+    const std::vector<RigidWall<dim> *> &rigid_walls,
+    const std::vector<double>           &wave_modulus_of_body,
+    const double                        &time,
+    const unsigned int                  &step_number,
+    std::string                         &failure,
+    TimerOutput                         &timer,
+    MPI_Comm                             comm)
+    : points(points)
+    , rigid_walls(rigid_walls)
+    , wave_modulus_of_body(wave_modulus_of_body)
+    , time(time)
+    , step_number(step_number)
+    , failure(failure)
+    , timer(timer)
+    , comm(comm)
+  {
+    for (const auto &body : points.bodies())
+      {
+        body_forces.push_back(body.body_force.get());
+        pressures.push_back(body.pressure.get());
+        tractions.push_back(body.traction.get());
+        with_body_forces = with_body_forces || body.body_force;
+      }
+  }
+
+
+  template <int dim>
   void
-  TimeIntegrator<dim>::keep_points_in_front_of_rigid_walls(const double time)
+  ExternalLoads<dim>::set_body_force_time(const double t)
+  {
+    for (auto *f : body_forces)
+      if (f != nullptr)
+        f->set_time(t);
+  }
+
+
+  template <int dim>
+  void
+  ExternalLoads<dim>::keep_points_in_front_of_rigid_walls(const double t)
   {
     const unsigned int n_walls = rigid_walls.size();
     if (n_walls == 0)
@@ -25,7 +63,7 @@ namespace mpm
     std::vector<Tensor<1, dim>> reaction(n_walls);
     std::vector<double>         work_of_wall(n_walls, 0.);
     for (unsigned int w = 0; w < n_walls; ++w)
-      position[w] = rigid_walls[w]->position(time);
+      position[w] = rigid_walls[w]->position(t);
     // A point put back by one wall may then be behind another. In a corner
     // a few more passes settle it (alternating projections onto the walls'
     // half-spaces converge there: in a 53-degree notch by 0.36 a pass);
@@ -53,9 +91,9 @@ namespace mpm
         if (moved > 1e-6 * size)
           {
             std::ostringstream msg;
-            msg << "step " << n_steps << ", t = " << time << ": material point "
-                << p.get_id() << " of body " << p.get_properties()[l.body]
-                << " at (" << p.get_location()
+            msg << "step " << step_number << ", t = " << t
+                << ": material point " << p.get_id() << " of body "
+                << p.get_properties()[l.body] << " at (" << p.get_location()
                 << ") is pinched between rigid walls: put back by each in "
                 << "turn " << max_passes << " times, it still lies more than "
                 << "a quarter of its size (" << 0.25 * size
@@ -78,13 +116,13 @@ namespace mpm
 
   template <int dim>
   void
-  TimeIntegrator<dim>::make_point_loads(const double dt)
+  ExternalLoads<dim>::make_point_loads(const double dt)
   {
     const FieldLayout &l = points.layout();
     for (const auto &loads : {pressures, tractions})
       for (auto *f : loads)
         if (f != nullptr)
-          f->set_time(t);
+          f->set_time(time);
     for (auto &p : points.handler())
       {
         double *q = p.get_properties().data();
@@ -123,7 +161,7 @@ namespace mpm
             q + l.load_moment);
       }
     for (auto *wall : rigid_walls)
-      wall->act_on_points(points.handler(), l, wave_modulus_of_body, t, dt);
+      wall->act_on_points(points.handler(), l, wave_modulus_of_body, time, dt);
     add_point_load_work(0.5 * dt);
   }
 
@@ -136,17 +174,15 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::close_external_work(const double dt)
+  ExternalLoads<dim>::close_step(const double dt)
   {
     const FieldLayout &l = points.layout();
     if (l.point_load != FieldLayout::absent)
       add_point_load_work(0.5 * dt);
-    if (has_body_forces)
+    if (with_body_forces)
       {
         TimerOutput::Scope scope(timer, "external work");
-        for (auto *f : body_forces)
-          if (f != nullptr)
-            f->set_time(t + dt);
+        set_body_force_time(time + dt);
         for (const auto &p : points.handler())
           {
             const double *q = p.get_properties().data();
@@ -171,7 +207,7 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::add_point_load_work(const double weight)
+  ExternalLoads<dim>::add_point_load_work(const double weight)
   {
     TimerOutput::Scope scope(timer, "external work");
     const FieldLayout &l = points.layout();
@@ -193,24 +229,34 @@ namespace mpm
 
   template <int dim>
   std::array<double, 2>
-  TimeIntegrator<dim>::external_work() const
+  ExternalLoads<dim>::totals() const
   {
     return {{Utilities::MPI::sum(work, comm),
              Utilities::MPI::sum(absolute_work, comm)}};
   }
 
 
-  // Members of TimeIntegrator defined here, instantiated for each dimension
-  // (the class itself is instantiated in time_integrator.cc).
-#define MPM_INSTANTIATE(dim)                                              \
-  template void TimeIntegrator<dim>::keep_points_in_front_of_rigid_walls( \
-    const double);                                                        \
-  template void TimeIntegrator<dim>::make_point_loads(const double);      \
-  template void TimeIntegrator<dim>::close_external_work(const double);   \
-  template void TimeIntegrator<dim>::add_point_load_work(const double);   \
-  template std::array<double, 2> TimeIntegrator<dim>::external_work() const;
-  MPM_INSTANTIATE(1)
-  MPM_INSTANTIATE(2)
-  MPM_INSTANTIATE(3)
-#undef MPM_INSTANTIATE
+  template <int dim>
+  void
+  ExternalLoads<dim>::save_state(RunState &state) const
+  {
+    const auto [w, a]             = totals();
+    state.values["external_work"] = w;
+    state.values["absolute_work"] = a;
+  }
+
+
+  template <int dim>
+  void
+  ExternalLoads<dim>::restore_state(const RunState &state)
+  {
+    const bool first = Utilities::MPI::this_mpi_process(comm) == 0;
+    work             = first ? state.get("external_work") : 0.;
+    absolute_work    = first ? state.get("absolute_work") : 0.;
+  }
+
+
+  template class ExternalLoads<1>;
+  template class ExternalLoads<2>;
+  template class ExternalLoads<3>;
 } // namespace mpm

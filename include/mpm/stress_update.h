@@ -1,0 +1,78 @@
+#ifndef mpm_stress_update_h
+#define mpm_stress_update_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include <mpm/background_grid.h>
+#include <mpm/checkpoint.h>
+#include <mpm/integrator_parameters.h>
+#include <mpm/material_points.h>
+
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The stress stage of the step: from the strain rate L each point holds
+   * after the kinematics, F-bar's volume average over cells (if the scene
+   * asks for it), each deformable body's material update, and the stress
+   * power they absorb (the energy residual, if asked for). The
+   * integrator calls update() once per step, wherever its update scheme
+   * puts the stress update.
+   */
+  template <int dim>
+  class StressUpdate
+  {
+  public:
+    StressUpdate(const IntegratorParameters<dim> &parameters,
+                 const BackgroundGrid<dim>       &grid,
+                 MaterialPoints<dim>             &points,
+                 TimerOutput                     &timer,
+                 MPI_Comm                         comm);
+
+    /// Update the stresses of all deformable bodies over a step of @p dt.
+    void
+    update(const double dt);
+
+    /**
+     * The work the deformable bodies' stresses absorbed since the start
+     * (the stress power, summed over the steps; 'Simulation/energy
+     * residual', else 0), summed over the ranks (collective).
+     */
+    double
+    absorbed_work() const;
+
+    /// Put the absorbed work into @p state, or take it back (restart: the
+    /// sum over the ranks goes to the first).
+    void
+    save_state(RunState &state) const;
+    void
+    restore_state(const RunState &state);
+
+  private:
+    /// F-bar: replace each point's volume change over the step by that of
+    /// its body's points in its cell (see there).
+    void
+    average_volume_change_over_cells(const double dt);
+    /// Half of the step's stress power V sigma : L dt (see there), at the
+    /// stress before the update (@p before) or after it.
+    void
+    add_stress_power(const double dt, const bool before);
+
+    const bool                 f_bar;
+    const bool                 energy_residual;
+    const BackgroundGrid<dim> &grid;
+    MaterialPoints<dim>       &points;
+    TimerOutput               &timer;
+    MPI_Comm                   comm;
+    /// Each body's reference density (BodyParameters::deformable_density).
+    std::vector<double> density_of_body;
+    /// This rank's share of absorbed_work().
+    double absorbed = 0;
+  };
+} // namespace mpm
+
+#endif
