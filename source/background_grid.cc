@@ -562,10 +562,6 @@ namespace mpm
         }
 
     build_node_blocks();
-    node_constraints.clear();
-    node_frictions.clear();
-    node_dashpots.clear();
-    build_node_constraints();
   }
 
 
@@ -763,57 +759,6 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       volume *= (c[d] == 0 || c[d] == prm.n_cells[d] ? 0.5 : 1.) * h[d];
     return volume;
-  }
-
-
-  template <int dim>
-  void
-  BackgroundGrid<dim>::build_node_constraints()
-  {
-    // An owned node lies on face f (x min, x max, y min, ...) if its index
-    // in direction f / 2 is the first or the last; faces of each kind
-    // combine.
-    for (unsigned int i = 0; i < n_owned_nodes; ++i)
-      {
-        const CellCoordinates c    = owned_node_lattice[i];
-        unsigned int          mask = 0, friction_faces = 0;
-        for (unsigned int f = 0; f < 2 * dim; ++f)
-          {
-            const unsigned int d = f / 2;
-            if (c[d] != (f % 2 == 0 ? 0 : prm.n_cells[d]))
-              continue;
-            switch (prm.boundary[f])
-              {
-                case BoundaryType::fixed:
-                  mask |= (1u << dim) - 1;
-                  break;
-                case BoundaryType::slip:
-                  mask |= 1u << d;
-                  break;
-                case BoundaryType::friction:
-                  friction_faces |= 1u << f;
-                  break;
-                  case BoundaryType::absorbing: {
-                    // The node's share of the face: half a cell in each
-                    // tangential direction on either side of it.
-                    double area = 1;
-                    for (unsigned int e = 0; e < dim; ++e)
-                      if (e != d)
-                        area *=
-                          (c[e] == 0 || c[e] == prm.n_cells[e] ? 0.5 : 1.) *
-                          h[e];
-                    node_dashpots.push_back({i, f, area});
-                    break;
-                  }
-                case BoundaryType::free:
-                  break;
-              }
-          }
-        if (mask != 0)
-          node_constraints.emplace_back(i, mask);
-        if (friction_faces != 0)
-          node_frictions.emplace_back(i, friction_faces);
-      }
   }
 
 

@@ -58,14 +58,6 @@ namespace mpm
   face_name(const unsigned int face);
 
 
-  /// A node on an absorbing face: the face (x min, x max, y min, ...) and
-  /// the share of its area the node's dashpots act on.
-  struct AbsorbingNode
-  {
-    unsigned int node, face;
-    double       area;
-  };
-
   template <int dim>
   struct GridParameters
   {
@@ -433,29 +425,6 @@ namespace mpm
       return n_owned_nodes;
     }
 
-    /// Owned nodes with boundary constraints and the bit mask of the
-    /// velocity components they hold at zero.
-    const std::vector<std::pair<unsigned int, unsigned int>> &
-    constrained_nodes() const
-    {
-      return node_constraints;
-    }
-
-    /// Owned nodes on friction faces and the bit mask of those faces
-    /// (bit f: face f = x min, x max, y min, ...).
-    const std::vector<std::pair<unsigned int, unsigned int>> &
-    friction_nodes() const
-    {
-      return node_frictions;
-    }
-
-    /// Owned nodes on absorbing faces, one entry per node and face.
-    const std::vector<AbsorbingNode> &
-    absorbing_nodes() const
-    {
-      return node_dashpots;
-    }
-
     /// Local indices of the owned nodes in the box [lower, upper].
     std::vector<unsigned int>
     owned_nodes_in_box(const Point<dim> &lower, const Point<dim> &upper) const;
@@ -524,8 +493,6 @@ namespace mpm
     IndexSet
     relevant_nodes(
       const std::vector<types::global_dof_index> &global_nodes) const;
-    void
-    build_node_constraints();
     /// The node blocks of the owned tiles, from tile_nodes (which they
     /// replace).
     void
@@ -555,13 +522,10 @@ namespace mpm
     std::vector<unsigned int> tile_nodes;
     /// Per tile: where its node block starts in node_blocks (owned tiles;
     /// invalid for the others).
-    std::vector<unsigned int>                          first_block_entry;
-    std::vector<unsigned int>                          node_blocks;
-    std::vector<unsigned int>                          owned_tiles;
-    std::vector<CellCoordinates>                       owned_node_lattice;
-    std::vector<std::pair<unsigned int, unsigned int>> node_constraints;
-    std::vector<std::pair<unsigned int, unsigned int>> node_frictions;
-    std::vector<AbsorbingNode>                         node_dashpots;
+    std::vector<unsigned int>    first_block_entry;
+    std::vector<unsigned int>    node_blocks;
+    std::vector<unsigned int>    owned_tiles;
+    std::vector<CellCoordinates> owned_node_lattice;
   };
 } // namespace mpm
 

@@ -352,7 +352,7 @@ namespace mpm
     const BackgroundGrid<dim>      &grid;
     MaterialPoints<dim>            &points;
     /// The grid's faces (fixed, slip, friction, absorbing).
-    const GridFaces<dim> faces;
+    GridFaces<dim>       faces;
     VelocityRegion<dim> &velocity_region;
     /// The walls acting on the points.
     const std::vector<RigidWall<dim> *> rigid_walls;

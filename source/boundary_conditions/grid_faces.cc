@@ -32,6 +32,61 @@ namespace mpm
 
   template <int dim>
   void
+  GridFaces<dim>::reinit()
+  {
+    constrained_nodes.clear();
+    friction_nodes.clear();
+    absorbing_nodes.clear();
+    const GridParameters<dim> &prm = grid.parameters();
+    const Tensor<1, dim>      &h   = grid.cell_size();
+    // An owned node lies on face f (x min, x max, y min, ...) if its index
+    // in direction f / 2 is the first or the last.
+    for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+      {
+        const auto   c    = grid.owned_node_coordinates(i);
+        unsigned int mask = 0, friction_faces = 0;
+        for (unsigned int f = 0; f < 2 * dim; ++f)
+          {
+            const unsigned int d = f / 2;
+            if (c[d] != (f % 2 == 0 ? 0 : prm.n_cells[d]))
+              continue;
+            switch (prm.boundary[f])
+              {
+                case BoundaryType::fixed:
+                  mask |= (1u << dim) - 1;
+                  break;
+                case BoundaryType::slip:
+                  mask |= 1u << d;
+                  break;
+                case BoundaryType::friction:
+                  friction_faces |= 1u << f;
+                  break;
+                  case BoundaryType::absorbing: {
+                    // The node's share of the face: half a cell in each
+                    // tangential direction on either side of it.
+                    double area = 1;
+                    for (unsigned int e = 0; e < dim; ++e)
+                      if (e != d)
+                        area *=
+                          (c[e] == 0 || c[e] == prm.n_cells[e] ? 0.5 : 1.) *
+                          h[e];
+                    absorbing_nodes.push_back({i, f, area});
+                    break;
+                  }
+                case BoundaryType::free:
+                  break;
+              }
+          }
+        if (mask != 0)
+          constrained_nodes.emplace_back(i, mask);
+        if (friction_faces != 0)
+          friction_nodes.emplace_back(i, friction_faces);
+      }
+  }
+
+
+  template <int dim>
+  void
   GridFaces<dim>::apply(double            *u,
                         const unsigned int n_fields,
                         const unsigned int slot,
@@ -39,19 +94,19 @@ namespace mpm
   {
     using Layout                 = NodalLayout<dim>;
     constexpr unsigned int width = Layout::n_velocities;
-    for (const auto &[i, mask] : grid.constrained_nodes())
+    for (const auto &[i, mask] : constrained_nodes)
       for (unsigned int f = 0; f < n_fields; ++f)
         for (unsigned int d = 0; d < dim; ++d)
           if (mask & (1u << d))
             u[width * Layout::slot_of(i, f, n_fields) + slot + d] = 0;
     const double mu = grid.parameters().friction_coefficient;
-    for (const auto &[i, faces] : grid.friction_nodes())
+    for (const auto &[i, faces] : friction_nodes)
       for (unsigned int f = 0; f < n_fields; ++f)
         for (unsigned int face = 0; face < 2 * dim; ++face)
           if (faces & (1u << face))
             apply_coulomb_contact(
               u + width * Layout::slot_of(i, f, n_fields) + slot, face, mu);
-    if (dt > 0 && !grid.absorbing_nodes().empty())
+    if (dt > 0 && !absorbing_nodes.empty())
       apply_dashpots(u, n_fields, slot, dt);
   }
 
@@ -68,7 +123,7 @@ namespace mpm
     // m (v - v*) = -dt A Z v, so v = v* / (1 + dt A Z / m): stable for any
     // nodal mass, and a light node is simply held.
     using Layout = NodalLayout<dim>;
-    for (const AbsorbingNode &a : grid.absorbing_nodes())
+    for (const AbsorbingNode &a : absorbing_nodes)
       for (unsigned int f = 0; f < n_fields; ++f)
         {
           double *node =

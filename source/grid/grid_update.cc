@@ -13,6 +13,7 @@ namespace mpm
   TimeIntegrator<dim>::setup_nodal_data()
   {
     nodes.reinit(grid);
+    faces.reinit();
     if (contact)
       {
         contact_data.reinit(grid.make_partitioner(

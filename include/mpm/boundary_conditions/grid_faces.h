@@ -16,15 +16,15 @@ namespace mpm
    * on that face, applied to every velocity field of a node alike, after
    * each transfer to the grid and after the force update:
    *
-   * - fixed, slip: the components the face holds are set to zero (the
-   *   grid lists each owned node with its mask, constrained_nodes());
+   * - fixed, slip: the components the face holds are set to zero;
    * - friction: Coulomb contact, a velocity into the face is removed and
    *   friction takes at most mu times that from the tangential velocity;
    * - absorbing: a dashpot rho c on the normal and the tangential
    *   components (Lysmer-Kuhlemeyer), only at the force update.
    *
-   * A new face kind is a value of BoundaryType, its nodes in
-   * BackgroundGrid, and its rule here.
+   * A face kind is defined here: which of the owned nodes it holds
+   * (reinit()) and its rule on their velocities (apply()); a new one adds
+   * a value and a name to BoundaryType and boundary_names.
    */
   template <int dim>
   class GridFaces
@@ -34,6 +34,12 @@ namespace mpm
     /// 'Grid/absorbing body' of @p bodies (checked, if a face absorbs).
     GridFaces(const BackgroundGrid<dim>              &grid,
               const std::vector<BodyParameters<dim>> &bodies);
+
+    /// List the owned nodes on each face with what the face does to them
+    /// (after the grid's partition changed; faces of each kind combine at
+    /// edges and corners).
+    void
+    reinit();
 
     /**
      * Apply every face's rule to the nodal velocities at @p slot (an
@@ -60,9 +66,25 @@ namespace mpm
                    const unsigned int slot,
                    const double       dt) const;
 
+    /// A node on an absorbing face: the face (x min, x max, y min, ...)
+    /// and the share of its area the node's dashpots act on.
+    struct AbsorbingNode
+    {
+      unsigned int node, face;
+      double       area;
+    };
+
     const BackgroundGrid<dim> &grid;
     /// Impedances rho c_p and rho c_s of the absorbing faces.
     double normal_impedance = 0, shear_impedance = 0;
+    /// Owned nodes on fixed and slip faces and the bit mask of the
+    /// velocity components they hold at zero.
+    std::vector<std::pair<unsigned int, unsigned int>> constrained_nodes;
+    /// Owned nodes on friction faces and the bit mask of those faces
+    /// (bit f: face f = x min, x max, y min, ...).
+    std::vector<std::pair<unsigned int, unsigned int>> friction_nodes;
+    /// Owned nodes on absorbing faces, one entry per node and face.
+    std::vector<AbsorbingNode> absorbing_nodes;
   };
 } // namespace mpm
 
