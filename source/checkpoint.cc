@@ -65,6 +65,13 @@ namespace mpm
   }
 
 
+  double
+  RunState::share_of_rank(const std::string &key, MPI_Comm comm) const
+  {
+    return Utilities::MPI::this_mpi_process(comm) == 0 ? get(key) : 0.;
+  }
+
+
   void
   RunState::write(const std::string &file) const
   {

@@ -250,9 +250,8 @@ namespace mpm
   void
   ExternalLoads<dim>::restore_state(const RunState &state)
   {
-    const bool first = Utilities::MPI::this_mpi_process(comm) == 0;
-    work             = first ? state.get("external_work") : 0.;
-    absolute_work    = first ? state.get("absolute_work") : 0.;
+    work          = state.share_of_rank("external_work", comm);
+    absolute_work = state.share_of_rank("absolute_work", comm);
   }
 
 

@@ -198,9 +198,7 @@ namespace mpm
   StressUpdate<dim>::restore_state(const RunState &state)
   {
     if (energy_residual)
-      absorbed = Utilities::MPI::this_mpi_process(comm) == 0
-                   ? state.get("stress_work")
-                   : 0.;
+      absorbed = state.share_of_rank("stress_work", comm);
   }
 
 

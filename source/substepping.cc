@@ -147,12 +147,6 @@ namespace mpm
   }
 
 
-  /**
-   * dF = I + dt L is each substep's increment of F (update_stresses()
-   * calls this after F-bar, so L is the one the stress saw), and the
-   * product of the increments is F^(n+1) (F^n)^-1 exactly, for every point,
-   * whether or not its material stores F.
-   */
   template <int dim>
   void
   Substepper<dim>::substep(const double dt)
@@ -164,6 +158,13 @@ namespace mpm
   }
 
 
+  /**
+   * dF = I + dt L is each substep's increment of F (taken after the step:
+   * the points keep the L the stress update saw, after F-bar, until the
+   * next step's kinematics), and the product of the increments is
+   * F^(n+1) (F^n)^-1 exactly, for every point, whether or not its material
+   * stores F.
+   */
   template <int dim>
   void
   Substepper<dim>::accumulate_increment(const double dt)

@@ -56,6 +56,12 @@ namespace mpm
     double
     get(const std::string &key) const;
 
+    /// This rank's share of a sum over the ranks stored under @p key:
+    /// all of it on the first rank, 0 on the others (a restart may run on
+    /// another number of ranks).
+    double
+    share_of_rank(const std::string &key, MPI_Comm comm) const;
+
     void
     write(const std::string &file) const;
     static RunState
