@@ -273,13 +273,14 @@ namespace mpm
       Parse::bounded_double(prm, s, "least-squares weight", 0, 100);
     least_squares_amg = prm.get("least-squares preconditioner") == "AMG";
     newmark_gamma     = Parse::bounded_double(prm, s, "Newmark gamma", 0.5, 1);
-    if (newmark_gamma != 0.5 &&
-        (scheme != UpdateScheme::USL || transfer != Transfer::flip))
+    const bool blends_pic =
+      with_transfer(transfer, [](auto c) { return c.blends_pic; });
+    if (newmark_gamma != 0.5 && (scheme != UpdateScheme::USL || !blends_pic))
       throw InputError("Simulation/Newmark gamma",
                        prm.get("Newmark gamma"),
                        "other than 0.5 needs 'Simulation/update scheme = "
                        "USL' and 'Simulation/transfer = FLIP'");
-    if (pic_relaxation_time > 0 && transfer != Transfer::flip)
+    if (pic_relaxation_time > 0 && !blends_pic)
       throw InputError("Simulation/PIC relaxation time",
                        prm.get("PIC relaxation time"),
                        "must be 0 unless 'Simulation/transfer = FLIP'");

@@ -775,8 +775,8 @@ namespace mpm
   Simulation<dim>::warn_of_pic_viscosity() const
   {
     const auto &p = integrator_parameters;
-    if (p.transfer == Transfer::apic || p.flip_fraction == 1 ||
-        p.pic_relaxation_time > 0)
+    if (!with_transfer(p.transfer, [](auto c) { return c.blends_pic; }) ||
+        p.flip_fraction == 1 || p.pic_relaxation_time > 0)
       return;
     for (unsigned int b = 0; b < body_parameters.size(); ++b)
       {
@@ -810,7 +810,8 @@ namespace mpm
   void
   Simulation<dim>::warn_of_apic_at_rough_faces() const
   {
-    if (integrator_parameters.transfer != Transfer::apic)
+    if (!with_transfer(integrator_parameters.transfer,
+                       [](auto c) { return c.stores_affine_velocity; }))
       return;
     std::string rough_face;
     for (unsigned int f = 0; f < 2 * dim && rough_face.empty(); ++f)
@@ -849,8 +850,8 @@ namespace mpm
     const auto        &p = integrator_parameters;
     s << "scheme " << update_scheme_names.name(p.scheme) << ", basis "
       << basis_names.name(p.basis) << ", transfer ";
-    if (p.transfer == Transfer::apic)
-      s << "APIC";
+    if (!with_transfer(p.transfer, [](auto c) { return c.blends_pic; }))
+      s << transfer_names.name(p.transfer);
     else if (p.pic_relaxation_time > 0)
       s << "PIC/FLIP with PIC relaxation time " << p.pic_relaxation_time
         << " s";

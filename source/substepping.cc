@@ -255,11 +255,11 @@ namespace mpm
       // velocity. The projection is no work done on the bodies: the
       // substeps counted that already.
       const double work_so_far = integrator.loads.step_work_so_far();
-      integrator.grid_velocities_from_momentum(Layout::v_new);
+      integrator.grid_update.velocities_from_momentum(Layout::v_new);
       if (prm.least_squares)
         {
           solve_least_squares_reconstruction(basis, Dt);
-          integrator.apply_velocity_constraints(Layout::v_new);
+          integrator.grid_update.apply_constraints(Layout::v_new);
           nodes.velocities.update_ghost_values();
         }
       integrator.loads.set_step_work(work_so_far);

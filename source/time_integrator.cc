@@ -86,7 +86,6 @@ namespace mpm
     : prm(parameters)
     , grid(grid)
     , points(points)
-    , faces(grid, points.bodies())
     , velocity_region(velocity_region)
     , rigid_walls(rigid_walls)
     , virtual_fluid(virtual_fluid != nullptr && virtual_fluid->enabled()
@@ -96,12 +95,19 @@ namespace mpm
     , nodes(this->contact ? this->contact->n_fields() : 1,
             fields_of_bodies(this->contact, points.bodies().size()),
             points.layout().body,
-            prm.mass_scaling)
+            prm.mass_scaling,
+            this->contact ? MultiFieldContact<dim>::data_per_field : 0,
+            this->virtual_fluid != nullptr)
     , stresses(parameters, grid, points, timer, comm)
     , usf_contact_rule(prm.scheme == UpdateScheme::USF && this->contact &&
                        this->contact->deformable_bodies_touch())
     , timer(timer)
     , comm(comm)
+    // Nodal masses are stored with the mass scaling (see
+    // GridUpdate::velocities_from_momentum), and so is the guard's
+    // threshold.
+    , min_nodal_mass(prm.small_mass_fraction * prm.mass_scaling *
+                     points.min_particle_mass())
     , loads(points,
             rigid_walls,
             wave_modulus_of_body,
@@ -110,6 +116,17 @@ namespace mpm
             failure,
             timer,
             comm)
+    , grid_update(prm,
+                  grid,
+                  points.bodies(),
+                  nodes,
+                  velocity_region,
+                  this->contact,
+                  this->virtual_fluid,
+                  loads,
+                  min_nodal_mass,
+                  t,
+                  timer)
     , substepper(*this)
   {
     setup_nodal_data();
@@ -139,14 +156,11 @@ namespace mpm
           }
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
-    // Nodal masses are stored with the mass scaling (see
-    // grid_velocities_from_momentum), and so is the guard's threshold.
-    min_nodal_mass =
-      prm.small_mass_fraction * prm.mass_scaling * points.min_particle_mass();
     Assert(prm.basis != BasisType::cpgimp ||
              points.layout().deformation_gradient != FieldLayout::absent,
            ExcMessage("cpGIMP needs the deformation gradient"));
-    Assert(prm.transfer != Transfer::apic ||
+    Assert(!with_transfer(prm.transfer,
+                          [](auto c) { return c.stores_affine_velocity; }) ||
              points.layout().affine_velocity != FieldLayout::absent,
            ExcMessage("APIC needs the affine velocity field"));
 
@@ -198,6 +212,23 @@ namespace mpm
                              std::to_string(prm.substeps),
                              allowed.str());
           }
+      }
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::setup_nodal_data()
+  {
+    nodes.reinit(grid);
+    grid_update.reinit();
+    if (virtual_fluid)
+      {
+        fluid_volume.reinit(grid.make_partitioner(1));
+        support_volume.reinit(grid.make_partitioner(1));
+        for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+          support_volume.local_element(i) = grid.node_support_volume(i);
+        support_volume.update_ghost_values();
       }
   }
 
@@ -265,18 +296,19 @@ namespace mpm
       {
         case UpdateScheme::USL:
           scatter_masses_then_forces(basis);
-          grid_velocities_after_forces(dt);
+          grid_update.velocities_after_forces(dt);
           gather_to_particles(basis, dt, true);
           stresses.update(dt);
           break;
         case UpdateScheme::USF:
           // With deformable bodies in contact, the forces of the stress the
           // step starts from tell where they press on each other (see
-          // apply_contact); the updated stress's replace them below.
+          // GridUpdate::apply_contact); the updated stress's replace them
+          // below.
           scatter_to_grid(basis, true, usf_contact_rule);
-          grid_velocities_from_momentum(v_old);
+          grid_update.velocities_from_momentum(v_old);
           if (usf_contact_rule)
-            strain_rate_velocities_with_contact(dt);
+            grid_update.strain_rate_velocities_with_contact(dt);
           update_kinematics(basis, dt, usf_contact_rule ? v_new : v_old);
           stresses.update(dt);
           if (prm.basis == BasisType::cpgimp)
@@ -289,19 +321,19 @@ namespace mpm
               // their constraints do no work.
               loads.set_step_work(work_before);
               scatter_to_grid(basis, true, true);
-              grid_velocities_from_momentum(v_old);
+              grid_update.velocities_from_momentum(v_old);
             }
           else
             scatter_to_grid(basis, false, true);
-          grid_velocities_after_forces(dt);
+          grid_update.velocities_after_forces(dt);
           gather_to_particles(basis, dt, false);
           break;
         case UpdateScheme::MUSL:
           scatter_masses_then_forces(basis);
-          grid_velocities_after_forces(dt);
+          grid_update.velocities_after_forces(dt);
           gather_to_particles(basis, dt, false);
           scatter_to_grid(basis, true, false);
-          grid_velocities_from_momentum(v_new, true);
+          grid_update.velocities_from_momentum(v_new, true);
           update_kinematics(basis, dt, v_new);
           stresses.update(dt);
           break;

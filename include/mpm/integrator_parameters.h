@@ -7,6 +7,7 @@
 #include <mpm/basis.h>
 #include <mpm/material_points.h>
 #include <mpm/options.h>
+#include <mpm/transfer/transfers.h>
 
 #include <cmath>
 #include <string>
@@ -28,18 +29,6 @@ namespace mpm
     {"USL", UpdateScheme::USL},
     {"USF", UpdateScheme::USF},
     {"MUSL", UpdateScheme::MUSL}};
-
-  /// How velocities go from points to the grid and back.
-  enum class Transfer
-  {
-    flip, ///< PIC/FLIP blend, weighted by the FLIP fraction
-    apic  ///< affine particle-in-cell: points carry a velocity gradient C_p
-  };
-
-  /// The transfers by their names ('Simulation/transfer').
-  inline const OptionTable<Transfer> transfer_names = {{"FLIP", Transfer::flip},
-                                                       {"APIC",
-                                                        Transfer::apic}};
 
   template <int dim>
   struct IntegratorParameters

@@ -8,13 +8,13 @@
 
 #include <mpm/background_grid.h>
 #include <mpm/basis.h>
-#include <mpm/boundary_conditions/grid_faces.h>
 #include <mpm/boundary_conditions/rigid_wall.h>
 #include <mpm/boundary_conditions/velocity_region.h>
 #include <mpm/boundary_conditions/virtual_fluid.h>
 #include <mpm/checkpoint.h>
 #include <mpm/contact/multi_field.h>
 #include <mpm/external_loads.h>
+#include <mpm/grid/grid_update.h>
 #include <mpm/grid/nodal_layout.h>
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
@@ -255,13 +255,6 @@ namespace mpm
     template <typename Basis>
     void
     add_fluid_forces(const Basis &basis);
-    /// @p for_strain_rate: these velocities give the stress update's strain
-    /// rate after the force update (MUSL), see apply_contact.
-    void
-    grid_velocities_from_momentum(const unsigned int slot,
-                                  const bool         for_strain_rate = false);
-    void
-    grid_velocities_after_forces(const double dt);
     template <typename Basis>
     void
     gather_to_particles(const Basis &basis,
@@ -272,28 +265,6 @@ namespace mpm
     update_kinematics(const Basis       &basis,
                       const double       dt,
                       const unsigned int slot);
-    /// Multi-body contact and rigid bodies at every owned node where a
-    /// body has a field of its own; @p dt > 0 at the force update, where
-    /// the rigid bodies' reactions are measured and where the fields press
-    /// on each other is recorded for @p for_strain_rate (see there).
-    void
-    apply_contact(const unsigned int slot,
-                  const double       dt,
-                  const bool         for_strain_rate);
-    /// USF with contact: v_old into v_new, and where deformable fields
-    /// would press on each other at a force update with the forces
-    /// scattered so far (of the stress the step starts from), there they
-    /// do not part along the normal (see apply_contact).
-    void
-    strain_rate_velocities_with_contact(const double dt);
-    /// Boundary constraints on the nodal velocities in @p slot: contact,
-    /// the grid's faces, the velocity region; @p dt > 0 at the force
-    /// update, where reactions are measured and dashpots act;
-    /// @p for_strain_rate as in grid_velocities_from_momentum.
-    void
-    apply_velocity_constraints(const unsigned int slot,
-                               const double       dt              = 0,
-                               const bool         for_strain_rate = false);
     /// Visit every locally owned point with its stencil (see there).
     template <typename Basis, typename Kernel>
     void
@@ -351,9 +322,7 @@ namespace mpm
     const IntegratorParameters<dim> prm;
     const BackgroundGrid<dim>      &grid;
     MaterialPoints<dim>            &points;
-    /// The grid's faces (fixed, slip, friction, absorbing).
-    GridFaces<dim>       faces;
-    VelocityRegion<dim> &velocity_region;
+    VelocityRegion<dim>            &velocity_region;
     /// The walls acting on the points.
     const std::vector<RigidWall<dim> *> rigid_walls;
     /// Null, or a fluid acting on the bodies' surface (only if enabled).
@@ -365,26 +334,16 @@ namespace mpm
     /// F-bar, the materials' update and the stress power.
     StressUpdate<dim> stresses;
     /// USF with deformable bodies that touch (see
-    /// strain_rate_velocities_with_contact).
-    const bool usf_contact_rule;
-    /// Multi-field only: per node and field, sum_p m_p grad phi_I(x_p)
-    /// (dim; minus the gradient of the field's nodal mass) and the number
-    /// of the field's points whose domain holds the node.
-    LinearAlgebra::distributed::Vector<double> contact_data;
-    /// MUSL with deformable bodies in contact only: per owned node, did
-    /// their fields press on each other at this step's force update (see
-    /// apply_contact)?
-    std::vector<unsigned char> pressed_nodes;
-    TimerOutput               &timer;
-    MPI_Comm                   comm;
+    /// GridUpdate::strain_rate_velocities_with_contact).
+    const bool   usf_contact_rule;
+    TimerOutput &timer;
+    MPI_Comm     comm;
 
-    /// Virtual fluid only: the wetted bodies' volume at the nodes, the
+    /// Virtual fluid only: the wetted bodies' volume at the nodes and the
     /// volume of a node's support in the grid (integral of its shape
-    /// function), and the fluid's nodal forces.
-    LinearAlgebra::distributed::Vector<double> fluid_volume, support_volume,
-      fluid_force;
-    Tensor<1, dim>      fluid_force_total; ///< this step's, on owned nodes
-    std::vector<double> wave_modulus_of_body;
+    /// function).
+    LinearAlgebra::distributed::Vector<double> fluid_volume, support_volume;
+    std::vector<double>                        wave_modulus_of_body;
     /// dM/dp of each body (Material::wave_modulus_pressure_slope).
     std::vector<double> wave_modulus_pressure_slope_of_body;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
@@ -400,7 +359,8 @@ namespace mpm
     /// cells: half of 1 / (points per cell).
     std::vector<double> initial_half_width_of_body;
 
-    double                min_nodal_mass;
+    /// The small-mass guard's nodal mass (see strain_rate_light_mass).
+    const double          min_nodal_mass;
     double                t         = 0;
     double                last_dt   = 0;
     unsigned int          n_steps   = 0;
@@ -409,6 +369,8 @@ namespace mpm
     /// The loads and the external work (with the clock and the diagnosis
     /// above, which it reads and sets).
     ExternalLoads<dim> loads;
+    /// The nodal velocities and their constraints.
+    GridUpdate<dim> grid_update;
     /// The macro steps, if the scene sets a macro time step.
     Substepper<dim> substepper;
   };

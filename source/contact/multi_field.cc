@@ -169,7 +169,7 @@ namespace mpm
     // lifts off.
     // @p hold_normal (MUSL's strain-rate velocities where the fields pressed
     // on each other at the step's force update, see
-    // TimeIntegrator::apply_contact) has them stay together the same way.
+    // GridUpdate::apply_contact) has them stay together the same way.
     bool keep_together = false;
     if (rigid < 0)
       {
@@ -241,7 +241,7 @@ namespace mpm
   template <int dim>
   std::vector<double>
   MultiFieldContact<dim>::mean_force_since_last_call(const double time,
-                                                      MPI_Comm     comm)
+                                                     MPI_Comm     comm)
   {
     std::vector<double> values;
     for (auto &meter : meters)

@@ -1,7 +1,7 @@
-// The grid stage of the step: the nodal vectors, the nodal velocities from
-// the scattered momenta and forces, and the constraints on them (contact
-// between bodies' fields, the grid's faces, the velocity region).
-#include <mpm/time_integrator.h>
+// The grid stage of the step: the nodal velocities from the scattered
+// momenta and forces, and the constraints on them (contact between bodies'
+// fields, the grid's faces, the velocity region).
+#include <mpm/grid/grid_update.h>
 
 #include <algorithm>
 #include <vector>
@@ -9,36 +9,48 @@
 namespace mpm
 {
   template <int dim>
-  void
-  TimeIntegrator<dim>::setup_nodal_data()
+  GridUpdate<dim>::GridUpdate(const IntegratorParameters<dim> &parameters,
+                              const BackgroundGrid<dim>       &grid,
+                              const std::vector<BodyParameters<dim>> &bodies,
+                              NodalState<dim>                        &nodes,
+                              VelocityRegion<dim>    &velocity_region,
+                              MultiFieldContact<dim> *contact,
+                              VirtualFluid<dim>      *virtual_fluid,
+                              ExternalLoads<dim>     &loads,
+                              const double            light_mass,
+                              const double           &time,
+                              TimerOutput            &timer)
+    : prm(parameters)
+    , grid(grid)
+    , nodes(nodes)
+    , faces(grid, bodies)
+    , velocity_region(velocity_region)
+    , contact(contact)
+    , virtual_fluid(virtual_fluid)
+    , loads(loads)
+    , light_mass(light_mass)
+    , t(time)
+    , timer(timer)
   {
-    nodes.reinit(grid);
-    faces.reinit();
-    if (contact)
-      {
-        contact_data.reinit(grid.make_partitioner(
-          nodes.n_fields * MultiFieldContact<dim>::data_per_field));
-        // Only deformable fields press on each other.
-        if (prm.scheme == UpdateScheme::MUSL &&
-            contact->deformable_bodies_touch())
-          pressed_nodes.assign(grid.n_locally_owned_nodes(), 0);
-      }
-    if (virtual_fluid)
-      {
-        fluid_volume.reinit(grid.make_partitioner(1));
-        fluid_force.reinit(grid.make_partitioner(nodes.n_fields * dim));
-        support_volume.reinit(grid.make_partitioner(1));
-        for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
-          support_volume.local_element(i) = grid.node_support_volume(i);
-        support_volume.update_ghost_values();
-      }
   }
 
 
   template <int dim>
   void
-  TimeIntegrator<dim>::grid_velocities_from_momentum(const unsigned int slot,
-                                                     const bool for_strain_rate)
+  GridUpdate<dim>::reinit()
+  {
+    faces.reinit();
+    // Only deformable fields press on each other.
+    if (contact && prm.scheme == UpdateScheme::MUSL &&
+        contact->deformable_bodies_touch())
+      pressed_nodes.assign(grid.n_locally_owned_nodes(), 0);
+  }
+
+
+  template <int dim>
+  void
+  GridUpdate<dim>::velocities_from_momentum(const unsigned int slot,
+                                            const bool         for_strain_rate)
   {
     TimerOutput::Scope scope(timer, "grid update");
     const double      *g       = nodes.sums.get_values();
@@ -58,14 +70,14 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           vel[slot + d] = node[momentum + d] * inv_m;
       }
-    apply_velocity_constraints(slot, 0., for_strain_rate);
+    apply_constraints(slot, 0., for_strain_rate);
     nodes.velocities.update_ghost_values();
   }
 
 
   template <int dim>
   void
-  TimeIntegrator<dim>::grid_velocities_after_forces(const double dt)
+  GridUpdate<dim>::velocities_after_forces(const double dt)
   {
     TimerOutput::Scope scope(timer, "grid update");
     const double      *g = nodes.sums.get_values();
@@ -73,8 +85,8 @@ namespace mpm
     // Implicit in the damping term: unconditionally stable for any c.
     const double damping_factor = 1. / (1. + prm.damping * dt);
     const double alpha          = prm.local_damping;
-    // Newmark (see gather_to_particles): v_new is the velocity that moves
-    // the points, v_old + (gamma + 1/2) dt a.
+    // Newmark (see TimeIntegrator::gather_to_particles): v_new is the velocity
+    // that moves the points, v_old + (gamma + 1/2) dt a.
     const bool         newmark       = prm.newmark_gamma != 0.5;
     const double       motion_factor = prm.newmark_gamma + 0.5;
     const unsigned int n_slots       = nodes.n_owned_slots();
@@ -104,14 +116,15 @@ namespace mpm
             vel[v_new + d] = vel[v_old + d] +
                              motion_factor * (vel[v_new + d] - vel[v_old + d]);
         }
-    apply_velocity_constraints(v_new, dt);
+    apply_constraints(v_new, dt);
     nodes.velocities.update_ghost_values();
     if (virtual_fluid)
       {
-        virtual_fluid->add_impulse(dt * fluid_force_total);
+        virtual_fluid->add_impulse(dt * nodes.fluid_force_total);
         for (unsigned int i = 0; i < n_slots; ++i)
           for (unsigned int d = 0; d < dim; ++d)
-            loads.add_work(0.5 * dt * fluid_force.local_element(dim * i + d) *
+            loads.add_work(0.5 * dt *
+                           nodes.fluid_force.local_element(dim * i + d) *
                            (u[n_velocities * i + v_old + d] +
                             u[n_velocities * i + v_new + d]));
       }
@@ -120,9 +133,9 @@ namespace mpm
 
   template <int dim>
   void
-  TimeIntegrator<dim>::apply_velocity_constraints(const unsigned int slot,
-                                                  const double       dt,
-                                                  const bool for_strain_rate)
+  GridUpdate<dim>::apply_constraints(const unsigned int slot,
+                                     const double       dt,
+                                     const bool         for_strain_rate)
   {
     if (contact)
       apply_contact(slot, dt, for_strain_rate);
@@ -163,12 +176,12 @@ namespace mpm
    */
   template <int dim>
   void
-  TimeIntegrator<dim>::apply_contact(const unsigned int slot,
-                                     const double       dt,
-                                     const bool         for_strain_rate)
+  GridUpdate<dim>::apply_contact(const unsigned int slot,
+                                 const double       dt,
+                                 const bool         for_strain_rate)
   {
     double       *u    = nodes.velocities.get_values();
-    const double *data = contact_data.get_values();
+    const double *data = nodes.contact_data.get_values();
     contact->set_time(t);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
     // Only MUSL with deformable bodies in contact keeps pressed_nodes.
@@ -182,7 +195,7 @@ namespace mpm
                                 slot,
                                 data + MultiFieldContact<dim>::data_per_field *
                                          nodes.slot_of(i, 0),
-                                min_nodal_mass,
+                                light_mass,
                                 hold && pressed_nodes[i],
                                 impulse);
         if (record)
@@ -199,11 +212,11 @@ namespace mpm
 
   template <int dim>
   void
-  TimeIntegrator<dim>::strain_rate_velocities_with_contact(const double dt)
+  GridUpdate<dim>::strain_rate_velocities_with_contact(const double dt)
   {
     TimerOutput::Scope scope(timer, "grid update");
     const double      *g    = nodes.sums.get_values();
-    const double      *data = contact_data.get_values();
+    const double      *data = nodes.contact_data.get_values();
     double            *u    = nodes.velocities.get_values();
     contact->set_time(t);
     // A node's fields, to try the force update on: only the sign of the
@@ -239,38 +252,17 @@ namespace mpm
                                   n_velocities,
                                   v_new,
                                   node_data,
-                                  min_nodal_mass,
+                                  light_mass,
                                   false,
                                   impulse))
-          contact->correct_node(node,
-                                n_velocities,
-                                v_new,
-                                node_data,
-                                min_nodal_mass,
-                                true,
-                                impulse);
+          contact->correct_node(
+            node, n_velocities, v_new, node_data, light_mass, true, impulse);
       }
     nodes.velocities.update_ghost_values();
   }
 
 
-  // Members of TimeIntegrator defined here, instantiated for each dimension
-  // (the class itself is instantiated in time_integrator.cc).
-#define MPM_INSTANTIATE(dim)                                              \
-  template void TimeIntegrator<dim>::setup_nodal_data();                  \
-  template void TimeIntegrator<dim>::grid_velocities_from_momentum(       \
-    const unsigned int, const bool);                                      \
-  template void TimeIntegrator<dim>::grid_velocities_after_forces(        \
-    const double);                                                        \
-  template void TimeIntegrator<dim>::apply_velocity_constraints(          \
-    const unsigned int, const double, const bool);                        \
-  template void TimeIntegrator<dim>::apply_contact(const unsigned int,    \
-                                                   const double,          \
-                                                   const bool);           \
-  template void TimeIntegrator<dim>::strain_rate_velocities_with_contact( \
-    const double);
-  MPM_INSTANTIATE(1)
-  MPM_INSTANTIATE(2)
-  MPM_INSTANTIATE(3)
-#undef MPM_INSTANTIATE
+  template class GridUpdate<1>;
+  template class GridUpdate<2>;
+  template class GridUpdate<3>;
 } // namespace mpm

@@ -9,11 +9,15 @@ namespace mpm
   NodalState<dim>::NodalState(const unsigned int        n_fields,
                               std::vector<unsigned int> field_of_body,
                               const unsigned int        body_slot,
-                              const double              mass_scaling)
+                              const double              mass_scaling,
+                              const unsigned int        contact_data_per_field,
+                              const bool                fluid_forces)
     : n_fields(n_fields)
     , field_of_body(std::move(field_of_body))
     , body_slot(body_slot)
     , mass_scaling(mass_scaling)
+    , contact_data_per_field(contact_data_per_field)
+    , fluid_forces(fluid_forces)
   {
   }
 
@@ -25,6 +29,11 @@ namespace mpm
     sums.reinit(grid.make_partitioner(n_fields * Layout::n_sums));
     velocities.reinit(grid.make_partitioner(n_fields * Layout::n_velocities));
     owned_slots = n_fields * grid.n_locally_owned_nodes();
+    if (contact_data_per_field > 0)
+      contact_data.reinit(
+        grid.make_partitioner(n_fields * contact_data_per_field));
+    if (fluid_forces)
+      fluid_force.reinit(grid.make_partitioner(n_fields * dim));
   }
 
 

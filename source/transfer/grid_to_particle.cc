@@ -15,9 +15,9 @@ namespace mpm
   {
     with_scene_basis([&](const auto &basis) {
       scatter_to_grid(basis, true, false);
-      grid_velocities_from_momentum(v_old);
+      grid_update.velocities_from_momentum(v_old);
       // No force, no step: the new grid velocity is the old one.
-      grid_velocities_from_momentum(v_new);
+      grid_update.velocities_from_momentum(v_new);
       gather_to_particles(basis, 0., false);
     });
     raise_if_any_failed(failure, comm);
@@ -34,7 +34,7 @@ namespace mpm
     TimerOutput::Scope scope(timer, "G2P");
     const FieldLayout &l     = points.layout();
     const double      *u_all = nodes.velocities.get_values();
-    // Newmark's gamma (USL, FLIP): see grid_velocities_after_forces.
+    // Newmark's gamma (USL, FLIP): see GridUpdate::velocities_after_forces.
     const GatherState                          state{dt,
                             prm.flip_fraction_of_step(dt),
                             kinematics && prm.newmark_gamma != 0.5,

@@ -29,13 +29,13 @@ namespace mpm
     if (light_mass > 0)
       {
         scatter_to_grid(basis, true, false);
-        grid_velocities_from_momentum(v_old);
+        grid_update.velocities_from_momentum(v_old);
         scatter_to_grid(basis, false, true, light_mass);
       }
     else
       {
         scatter_to_grid(basis, true, true);
-        grid_velocities_from_momentum(v_old);
+        grid_update.velocities_from_momentum(v_old);
       }
   }
 
@@ -149,7 +149,7 @@ namespace mpm
       }
     const bool with_gradients = contact && mass_and_momentum;
     if (with_gradients)
-      contact_data = 0.;
+      nodes.contact_data = 0.;
 
     const FieldLayout   &l       = points.layout();
     const Tensor<1, dim> gravity = prm.gravity;
@@ -217,7 +217,7 @@ namespace mpm
                       : q[l.volume];
                   for (unsigned int v = 0; v < Basis::n_nodes; ++v)
                     {
-                      double *data = contact_data.begin() +
+                      double *data = nodes.contact_data.begin() +
                                      MultiFieldContact<dim>::data_per_field *
                                        nodes.slot_of(s.nodes[v], field);
                       for (unsigned int d = 0; d < dim; ++d)
@@ -335,7 +335,7 @@ namespace mpm
       loads.set_body_force_power(power);
     nodes.sums.compress(VectorOperation::add);
     if (with_gradients)
-      contact_data.compress(VectorOperation::add);
+      nodes.contact_data.compress(VectorOperation::add);
     if (forces && virtual_fluid)
       add_fluid_forces(basis);
   }
@@ -383,7 +383,7 @@ namespace mpm
       return fluid_volume.local_element(node) <
              (1. - 1e-3) * support_volume.local_element(node);
     };
-    fluid_force = 0.;
+    nodes.fluid_force = 0.;
     virtual_fluid->set_time(t);
     for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
       if (!virtual_fluid->wets(q[l.body]))
@@ -405,20 +405,20 @@ namespace mpm
             const Tensor<1, dim> f =
               -V * (pressure * s.gradients[v] + s.weights[v] * grad_p);
             for (unsigned int d = 0; d < dim; ++d)
-              fluid_force.local_element(
+              nodes.fluid_force.local_element(
                 dim * nodes.slot_of(s.nodes[v], nodes.field_of(q)) + d) += f[d];
           }
     });
-    fluid_force.compress(VectorOperation::add);
+    nodes.fluid_force.compress(VectorOperation::add);
 
-    double *g         = nodes.sums.get_values();
-    fluid_force_total = Tensor<1, dim>();
+    double *g               = nodes.sums.get_values();
+    nodes.fluid_force_total = Tensor<1, dim>();
     for (unsigned int i = 0; i < nodes.n_owned_slots(); ++i)
       for (unsigned int d = 0; d < dim; ++d)
         {
-          const double f = fluid_force.local_element(dim * i + d);
+          const double f = nodes.fluid_force.local_element(dim * i + d);
           g[n_sums * i + force + d] += f;
-          fluid_force_total[d] += f;
+          nodes.fluid_force_total[d] += f;
         }
   }
 

@@ -1,6 +1,8 @@
 #ifndef mpm_grid_nodal_state_h
 #define mpm_grid_nodal_state_h
 
+#include <deal.II/base/tensor.h>
+
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <mpm/grid/nodal_layout.h>
@@ -30,13 +32,18 @@ namespace mpm
 
     /// @p field_of_body: the velocity field of each body (all 0 with one
     /// field); @p body_slot: where a point's data holds its body index;
-    /// @p mass_scaling: the factor the stored nodal masses carry.
+    /// @p mass_scaling: the factor the stored nodal masses carry;
+    /// @p contact_data_per_field: the size of a field's contact data per
+    /// node (0 without multi-body contact); @p fluid_forces: does a
+    /// virtual fluid act?
     NodalState(const unsigned int        n_fields,
                std::vector<unsigned int> field_of_body,
                const unsigned int        body_slot,
-               const double              mass_scaling);
+               const double              mass_scaling,
+               const unsigned int        contact_data_per_field = 0,
+               const bool                fluid_forces           = false);
 
-    /// (Re)create both arrays on @p grid's partition (after
+    /// (Re)create the arrays on @p grid's partition (after
     /// BackgroundGrid::repartition()).
     void
     reinit(const BackgroundGrid<dim> &grid);
@@ -82,10 +89,22 @@ namespace mpm
     /// [m, v, v*] per node and field (mass, velocity before and after the
     /// force update), read through ghost values.
     LinearAlgebra::distributed::Vector<double> velocities;
+    /// Multi-body contact only: per node and field, sum_p m_p grad
+    /// phi_I(x_p) (dim values; minus the gradient of the field's nodal
+    /// mass) and the number of the field's points whose domain holds the
+    /// node, summed over the ranks; empty without.
+    LinearAlgebra::distributed::Vector<double> contact_data;
+    /// Virtual fluid only: the fluid's force at each node (dim values per
+    /// node field, summed over the ranks; empty without) and its sum over
+    /// the owned nodes, this step's.
+    LinearAlgebra::distributed::Vector<double> fluid_force;
+    Tensor<1, dim>                             fluid_force_total;
 
   private:
     const unsigned int body_slot;
     const double       mass_scaling;
+    const unsigned int contact_data_per_field;
+    const bool         fluid_forces;
     unsigned int       owned_slots = 0;
   };
 } // namespace mpm

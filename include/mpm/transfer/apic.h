@@ -131,7 +131,9 @@ namespace mpm
    */
   struct AffineParticleInCell
   {
-    static constexpr bool stores_affine_velocity = true;
+    static constexpr const char *name                   = "APIC";
+    static constexpr bool        blends_pic             = false;
+    static constexpr bool        stores_affine_velocity = true;
 
     /// The increment only stands in at the light nodes of a basis whose
     /// affine weights do not vanish with the weights (the linear one).

@@ -26,6 +26,13 @@ namespace mpm
    */
   struct FlipPicBlend
   {
+    /// Its name in 'Simulation/transfer'.
+    static constexpr const char *name = "FLIP";
+
+    /// Does the transfer blend PIC into its update ('FLIP fraction',
+    /// 'PIC relaxation time')?
+    static constexpr bool blends_pic = true;
+
     /// Does the transfer keep an affine velocity C_p per point?
     static constexpr bool stores_affine_velocity = false;
 

@@ -1,0 +1,127 @@
+#ifndef mpm_grid_grid_update_h
+#define mpm_grid_grid_update_h
+
+#include <deal.II/base/timer.h>
+
+#include <mpm/background_grid.h>
+#include <mpm/boundary_conditions/grid_faces.h>
+#include <mpm/boundary_conditions/velocity_region.h>
+#include <mpm/boundary_conditions/virtual_fluid.h>
+#include <mpm/contact/multi_field.h>
+#include <mpm/external_loads.h>
+#include <mpm/grid/nodal_state.h>
+#include <mpm/integrator_parameters.h>
+
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The grid stage of the step: the nodal velocities from the scattered
+   * momenta (after each transfer to the grid) and from the forces (the
+   * force update, with damping and Newmark's factor), and the constraints
+   * on them in this order: multi-body contact and rigid bodies, the
+   * grid's faces (GridFaces), the velocity region. Where a constraint or
+   * the virtual fluid does work on the bodies, it goes to the account of
+   * ExternalLoads.
+   *
+   * It reads and writes the shared NodalState and owns only what lives
+   * between the two velocity updates of one step: which nodes' fields
+   * pressed on each other at the force update (MUSL with deformable
+   * bodies in contact, see apply_contact()).
+   */
+  template <int dim>
+  class GridUpdate
+  {
+  public:
+    /// @p light_mass: the small-mass guard's nodal mass (contact leaves
+    /// fields this light out of its normals); @p time: the integrator's
+    /// clock (the rigid bodies' motion).
+    GridUpdate(const IntegratorParameters<dim>        &parameters,
+               const BackgroundGrid<dim>              &grid,
+               const std::vector<BodyParameters<dim>> &bodies,
+               NodalState<dim>                        &nodes,
+               VelocityRegion<dim>                    &velocity_region,
+               MultiFieldContact<dim>                 *contact,
+               VirtualFluid<dim>                      *virtual_fluid,
+               ExternalLoads<dim>                     &loads,
+               const double                            light_mass,
+               const double                           &time,
+               TimerOutput                            &timer);
+
+    /// After the grid's partition changed (and the nodal arrays with it).
+    void
+    reinit();
+
+    /// The velocities in @p slot from the momenta, then constrained;
+    /// @p for_strain_rate: these velocities give the stress update's
+    /// strain rate after the force update (MUSL), see apply_contact().
+    void
+    velocities_from_momentum(const unsigned int slot,
+                             const bool         for_strain_rate = false);
+
+    /// The force update v_new = v_old + dt f / m (with damping and
+    /// Newmark's factor), then constrained; the fluid's work.
+    void
+    velocities_after_forces(const double dt);
+
+    /// USF with contact: v_old into v_new, and where deformable fields
+    /// would press on each other at a force update with the forces
+    /// scattered so far (of the stress the step starts from), there they
+    /// do not part along the normal (see apply_contact()).
+    void
+    strain_rate_velocities_with_contact(const double dt);
+
+    /// Boundary constraints on the nodal velocities in @p slot: contact,
+    /// the grid's faces, the velocity region; @p dt > 0 at the force
+    /// update, where reactions are measured and dashpots act;
+    /// @p for_strain_rate as in velocities_from_momentum().
+    void
+    apply_constraints(const unsigned int slot,
+                      const double       dt              = 0,
+                      const bool         for_strain_rate = false);
+
+  private:
+    /// Multi-body contact and rigid bodies at every owned node where a
+    /// body has a field of its own; @p dt > 0 at the force update, where
+    /// the rigid bodies' reactions are measured and where the fields press
+    /// on each other is recorded for @p for_strain_rate (see there).
+    void
+    apply_contact(const unsigned int slot,
+                  const double       dt,
+                  const bool         for_strain_rate);
+
+    using Layout                               = NodalLayout<dim>;
+    static constexpr unsigned int mass         = Layout::mass;
+    static constexpr unsigned int momentum     = Layout::momentum;
+    static constexpr unsigned int force        = Layout::force;
+    static constexpr unsigned int n_sums       = Layout::n_sums;
+    static constexpr unsigned int node_mass    = Layout::node_mass;
+    static constexpr unsigned int v_old        = Layout::v_old;
+    static constexpr unsigned int v_new        = Layout::v_new;
+    static constexpr unsigned int n_velocities = Layout::n_velocities;
+
+    const IntegratorParameters<dim> &prm;
+    const BackgroundGrid<dim>       &grid;
+    NodalState<dim>                 &nodes;
+    /// The grid's faces (fixed, slip, friction, absorbing).
+    GridFaces<dim>       faces;
+    VelocityRegion<dim> &velocity_region;
+    /// Null, or the multi-body contact (only if a body has its own field).
+    MultiFieldContact<dim> *contact;
+    /// Null, or a fluid acting on the bodies' surface (only if enabled).
+    VirtualFluid<dim>  *virtual_fluid;
+    ExternalLoads<dim> &loads;
+    const double        light_mass;
+    const double       &t;
+    TimerOutput        &timer;
+    /// MUSL with deformable bodies in contact only: per owned node, did
+    /// their fields press on each other at this step's force update (see
+    /// apply_contact())?
+    std::vector<unsigned char> pressed_nodes;
+  };
+} // namespace mpm
+
+#endif
