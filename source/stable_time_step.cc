@@ -5,7 +5,6 @@
 // velocity, stress or volume). initial_step says which limit sets the
 // first step, for the log.
 #include <mpm/time_integrator.h>
-#include <mpm/time_integrator.templates.h>
 
 #include <algorithm>
 #include <cmath>

@@ -15,7 +15,7 @@
 #include <mpm/parameters.h>
 #include <mpm/substepping.h>
 #include <mpm/time_integrator.h>
-#include <mpm/time_integrator.templates.h>
+#include <mpm/transfer/point_loop.h>
 
 #include <cmath>
 #include <sstream>
@@ -221,7 +221,7 @@ namespace mpm
     for (unsigned int i = 0; i < n_entries; ++i)
       g[i] = 0;
     const FieldLayout &l = points.layout();
-    integrator.for_each_point(
+    integrator.loop.for_each_point(
       basis, [&](auto &p, const double *q, const auto &s) {
         const double             m = q[l.mass];
         const SecantTargets<dim> target(p->get_location(),
@@ -248,7 +248,7 @@ namespace mpm
   void
   Substepper<dim>::reconstruct_grid_velocity(const double Dt)
   {
-    integrator.with_scene_basis([&](const auto &basis) {
+    integrator.loop.with_scene_basis([&](const auto &basis) {
       scatter_targets(basis, Dt);
       // Divided by the mass (and the least-squares system solved from
       // there), then projected on the boundary conditions like any grid
@@ -310,7 +310,7 @@ namespace mpm
     // The couplings: every pair of nodes of a point's stencil.
     TrilinosWrappers::SparsityPattern pattern(owned, owned, relevant, comm);
     std::array<types::global_dof_index, Basis::n_nodes> stencil;
-    integrator.for_each_point(
+    integrator.loop.for_each_point(
       basis, [&](auto &, const double *, const auto &s) {
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           stencil[v] = global[s.nodes[v]];
@@ -334,7 +334,7 @@ namespace mpm
         solution[d].reinit(owned, comm);
       }
     std::array<double, Basis::n_nodes> row;
-    integrator.for_each_point(
+    integrator.loop.for_each_point(
       basis, [&](auto &p, const double *q, const auto &s) {
         const double             m = q[l.mass];
         const SecantTargets<dim> target(p->get_location(),
@@ -457,28 +457,32 @@ namespace mpm
     const unsigned int stride = nodes.n_fields * Layout::n_velocities;
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
     double                                     largest_here = 0;
-    integrator.for_each_point(basis, [&](auto &p, double *q, const auto &s) {
-      const double  *u = u_all + Layout::n_velocities * nodes.field_of(q);
-      Tensor<1, dim> v_reconstructed, v_reset;
-      for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-        {
-          const double *node = u + stride * s.nodes[v];
-          v_reconstructed +=
-            s.weights[v] * Fields::vector<dim>(node + Layout::v_old);
-          v_reset += s.weights[v] * Fields::vector<dim>(node + Layout::v_new);
-        }
-      const SecantTargets<dim> target(p->get_location(), q + l.macro_step, Dt);
-      largest_here =
-        std::max(largest_here, Dt * (target.velocity - v_reconstructed).norm());
-      if (reset)
-        {
-          Fields::store(v_reset, q + l.velocity);
-          if (apic)
-            Fields::store(apic_velocity_gradient<dim>(
-                            basis, s, u, stride, Layout::v_new, affine),
-                          q + l.affine_velocity);
-        }
-    });
+    integrator.loop.for_each_point(
+      basis, [&](auto &p, double *q, const auto &s) {
+        const double  *u = u_all + Layout::n_velocities * nodes.field_of(q);
+        Tensor<1, dim> v_reconstructed, v_reset;
+        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+          {
+            const double *node = u + stride * s.nodes[v];
+            v_reconstructed +=
+              s.weights[v] * Fields::vector<dim>(node + Layout::v_old);
+            v_reset += s.weights[v] * Fields::vector<dim>(node + Layout::v_new);
+          }
+        const SecantTargets<dim> target(p->get_location(),
+                                        q + l.macro_step,
+                                        Dt);
+        largest_here =
+          std::max(largest_here,
+                   Dt * (target.velocity - v_reconstructed).norm());
+        if (reset)
+          {
+            Fields::store(v_reset, q + l.velocity);
+            if (apic)
+              Fields::store(apic_velocity_gradient<dim>(
+                              basis, s, u, stride, Layout::v_new, affine),
+                            q + l.affine_velocity);
+          }
+      });
     mismatch =
       std::max(mismatch,
                Utilities::MPI::max(largest_here, comm) / grid.min_cell_size());
@@ -492,7 +496,7 @@ namespace mpm
     swap_positions(); // the points at x^n, x^(n+1) in their field
     reconstruct_grid_velocity(Dt);
     const bool reset = apply_operations();
-    integrator.with_scene_basis(
+    integrator.loop.with_scene_basis(
       [&](const auto &basis) { gather_velocity(basis, Dt, reset); });
     swap_positions(); // and back at x^(n+1)
     ++n_macro_steps;

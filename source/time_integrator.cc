@@ -1,59 +1,13 @@
 #include <mpm/basis.h>
 #include <mpm/parameters.h>
 #include <mpm/time_integrator.h>
-#include <mpm/time_integrator.templates.h>
+#include <mpm/transfer/strain_rate.h>
 
 #include <algorithm>
 #include <sstream>
 
 namespace mpm
 {
-  template <int dim>
-  FieldRequests
-  point_fields_needed(const IntegratorParameters<dim>             &integrator,
-                      const std::vector<BodyParameters<dim>>      &bodies,
-                      const std::vector<RigidWallParameters<dim>> &walls,
-                      const bool initial_position)
-  {
-    FieldRequests fields;
-    fields.initial_position = initial_position;
-    for (const auto &body : bodies)
-      fields.initial_position =
-        fields.initial_position || body.body_force || body.is_displaced();
-    fields.deformation_gradient = integrator.basis == BasisType::cpgimp;
-    with_transfer(integrator.transfer, [&](auto transfer) {
-      fields.affine_velocity = decltype(transfer)::stores_affine_velocity;
-    });
-    fields.macro_step = integrator.macro_time_step > 0;
-    for (const auto &body : bodies)
-      {
-        fields.surface_area = fields.surface_area || body.has_surface_loads();
-        fields.surface_offset =
-          fields.surface_offset ||
-          (body.has_surface_loads() &&
-           body.loaded_face != numbers::invalid_unsigned_int);
-      }
-    for (const auto &wall : walls)
-      fields.wall_slips += wall.friction_coefficient > 0;
-    fields.point_load = fields.surface_area || !walls.empty();
-    return fields;
-  }
-
-
-  template <int dim>
-  std::vector<unsigned int>
-  wall_slip_slots(const std::vector<RigidWallParameters<dim>> &walls)
-  {
-    std::vector<unsigned int> slots;
-    unsigned int              n_slips = 0;
-    for (const auto &wall : walls)
-      slots.push_back(wall.friction_coefficient > 0
-                        ? n_slips++
-                        : numbers::invalid_unsigned_int);
-    return slots;
-  }
-
-
   namespace
   {
     /// The velocity field of each of @p n_bodies bodies: its own with
@@ -116,6 +70,17 @@ namespace mpm
             failure,
             timer,
             comm)
+    , loop(grid, points, prm.basis)
+    , to_grid(prm,
+              grid,
+              points,
+              loop,
+              nodes,
+              loads,
+              this->contact,
+              this->virtual_fluid,
+              t,
+              timer)
     , grid_update(prm,
                   grid,
                   points.bodies(),
@@ -127,6 +92,15 @@ namespace mpm
                   min_nodal_mass,
                   t,
                   timer)
+    , to_points(prm,
+                points,
+                loop,
+                nodes,
+                min_nodal_mass,
+                t,
+                n_steps,
+                failure,
+                timer)
     , substepper(*this)
   {
     setup_nodal_data();
@@ -154,7 +128,6 @@ namespace mpm
                 viscous_body      = &body - points.bodies().data();
               }
           }
-        initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
       }
     Assert(prm.basis != BasisType::cpgimp ||
              points.layout().deformation_gradient != FieldLayout::absent,
@@ -221,15 +194,8 @@ namespace mpm
   TimeIntegrator<dim>::setup_nodal_data()
   {
     nodes.reinit(grid);
+    to_grid.reinit();
     grid_update.reinit();
-    if (virtual_fluid)
-      {
-        fluid_volume.reinit(grid.make_partitioner(1));
-        support_volume.reinit(grid.make_partitioner(1));
-        for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
-          support_volume.local_element(i) = grid.node_support_volume(i);
-        support_volume.update_ghost_values();
-      }
   }
 
 
@@ -267,7 +233,7 @@ namespace mpm
   void
   TimeIntegrator<dim>::explicit_step(const double dt)
   {
-    with_scene_basis([&](const auto &basis) { advance(basis, dt); });
+    loop.with_scene_basis([&](const auto &basis) { advance(basis, dt); });
     raise_if_any_failed(failure, comm);
     loads.close_step(dt);
     // After the step's loads did their work at the velocities they saw.
@@ -297,7 +263,7 @@ namespace mpm
         case UpdateScheme::USL:
           scatter_masses_then_forces(basis);
           grid_update.velocities_after_forces(dt);
-          gather_to_particles(basis, dt, true);
+          to_points.gather(basis, dt, true);
           stresses.update(dt);
           break;
         case UpdateScheme::USF:
@@ -305,11 +271,13 @@ namespace mpm
           // step starts from tell where they press on each other (see
           // GridUpdate::apply_contact); the updated stress's replace them
           // below.
-          scatter_to_grid(basis, true, usf_contact_rule);
+          to_grid.scatter(basis, true, usf_contact_rule);
           grid_update.velocities_from_momentum(v_old);
           if (usf_contact_rule)
             grid_update.strain_rate_velocities_with_contact(dt);
-          update_kinematics(basis, dt, usf_contact_rule ? v_new : v_old);
+          to_points.update_kinematics(basis,
+                                      dt,
+                                      usf_contact_rule ? v_new : v_old);
           stresses.update(dt);
           if (prm.basis == BasisType::cpgimp)
             {
@@ -320,24 +288,109 @@ namespace mpm
               // The first grid velocities only gave the strain rate, and
               // their constraints do no work.
               loads.set_step_work(work_before);
-              scatter_to_grid(basis, true, true);
+              to_grid.scatter(basis, true, true);
               grid_update.velocities_from_momentum(v_old);
             }
           else
-            scatter_to_grid(basis, false, true);
+            to_grid.scatter(basis, false, true);
           grid_update.velocities_after_forces(dt);
-          gather_to_particles(basis, dt, false);
+          to_points.gather(basis, dt, false);
           break;
         case UpdateScheme::MUSL:
           scatter_masses_then_forces(basis);
           grid_update.velocities_after_forces(dt);
-          gather_to_particles(basis, dt, false);
-          scatter_to_grid(basis, true, false);
+          to_points.gather(basis, dt, false);
+          to_grid.scatter(basis, true, false);
           grid_update.velocities_from_momentum(v_new, true);
-          update_kinematics(basis, dt, v_new);
+          to_points.update_kinematics(basis, dt, v_new);
           stresses.update(dt);
           break;
       }
+  }
+
+
+  /**
+   * USL takes its strain rate from the force-updated velocities, and
+   * leaves the light nodes out of it (velocity_gradient). The internal
+   * force must then leave them out the same way, or the force's work is
+   * no longer the stress power and parting bodies gain energy
+   * (ParticleToGrid::scatter): the masses come first, then the forces with
+   * the light nodes known. MUSL and USF take the strain rate from
+   * transferred velocities and need no guard: one pass.
+   */
+  template <int dim>
+  template <typename Basis>
+  void
+  TimeIntegrator<dim>::scatter_masses_then_forces(const Basis &basis)
+  {
+    const double light_mass =
+      strain_rate_light_mass<Basis>(prm.scheme, min_nodal_mass);
+    if (light_mass > 0)
+      {
+        to_grid.scatter(basis, true, false);
+        grid_update.velocities_from_momentum(v_old);
+        to_grid.scatter(basis, false, true, light_mass);
+      }
+    else
+      {
+        to_grid.scatter(basis, true, true);
+        grid_update.velocities_from_momentum(v_old);
+      }
+  }
+
+
+  template <int dim>
+  std::array<double, 2>
+  TimeIntegrator<dim>::internal_work_and_stress_power(
+    const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
+      &w)
+  {
+    double work = 0, power = 0;
+    loop.with_scene_basis([&](const auto &basis) {
+      using Basis = std::decay_t<decltype(basis)>;
+      scatter_masses_then_forces(basis);
+      double       *u = nodes.velocities.get_values();
+      const double *g = nodes.sums.get_values();
+      for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+        {
+          const Tensor<1, dim> w_i = w(grid.owned_node_coordinates(i));
+          for (unsigned int f = 0; f < nodes.n_fields; ++f)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                u[n_velocities * nodes.slot_of(i, f) + v_new + d] = w_i[d];
+                work += g[n_sums * nodes.slot_of(i, f) + force + d] * w_i[d];
+              }
+        }
+      nodes.velocities.update_ghost_values();
+      const FieldLayout &l = points.layout();
+      loop.for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+        const Tensor<2, dim> L = velocity_gradient<dim>(
+          s,
+          nodes.velocities.get_values() + n_velocities * nodes.field_of(q),
+          nodes.n_fields * n_velocities,
+          v_new,
+          strain_rate_light_mass<Basis>(prm.scheme, min_nodal_mass));
+        power +=
+          q[l.volume] * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
+      });
+    });
+    return {
+      {Utilities::MPI::sum(work, comm), Utilities::MPI::sum(power, comm)}};
+  }
+
+
+  template <int dim>
+  void
+  TimeIntegrator<dim>::transfer_round_trip()
+  {
+    loop.with_scene_basis([&](const auto &basis) {
+      to_grid.scatter(basis, true, false);
+      grid_update.velocities_from_momentum(v_old);
+      // No force, no step: the new grid velocity is the old one.
+      grid_update.velocities_from_momentum(v_new);
+      to_points.gather(basis, 0., false);
+    });
+    raise_if_any_failed(failure, comm);
   }
 
 
@@ -376,25 +429,4 @@ namespace mpm
   template class TimeIntegrator<1>;
   template class TimeIntegrator<2>;
   template class TimeIntegrator<3>;
-  template FieldRequests
-  point_fields_needed<1>(const IntegratorParameters<1> &,
-                         const std::vector<BodyParameters<1>> &,
-                         const std::vector<RigidWallParameters<1>> &,
-                         const bool);
-  template std::vector<unsigned int>
-  wall_slip_slots<1>(const std::vector<RigidWallParameters<1>> &);
-  template FieldRequests
-  point_fields_needed<2>(const IntegratorParameters<2> &,
-                         const std::vector<BodyParameters<2>> &,
-                         const std::vector<RigidWallParameters<2>> &,
-                         const bool);
-  template std::vector<unsigned int>
-  wall_slip_slots<2>(const std::vector<RigidWallParameters<2>> &);
-  template FieldRequests
-  point_fields_needed<3>(const IntegratorParameters<3> &,
-                         const std::vector<BodyParameters<3>> &,
-                         const std::vector<RigidWallParameters<3>> &,
-                         const bool);
-  template std::vector<unsigned int>
-  wall_slip_slots<3>(const std::vector<RigidWallParameters<3>> &);
 } // namespace mpm

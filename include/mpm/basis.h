@@ -119,7 +119,7 @@ namespace mpm
       static constexpr unsigned int n_nodes          = 3;
       static constexpr bool         needs_half_width = false;
       /// Surface loads through the functions at the surface itself
-      /// (TensorProductBasis::weights_at), see scatter_to_grid.
+      /// (TensorProductBasis::weights_at), see ParticleToGrid::scatter.
       static constexpr bool exact_surface_weights         = true;
       static constexpr bool gradient_vanishes_with_weight = true;
 

@@ -52,7 +52,7 @@ namespace mpm
     /// order phi(x) + d . grad phi(x).
     unsigned int surface_offset = absent;
     /// dim*dim: this step's surface load times that offset, load (x) d,
-    /// which the scatter adds to the stress term (see scatter_to_grid).
+    /// which the scatter adds to the stress term (see ParticleToGrid::scatter).
     unsigned int load_moment = absent;
     /// dim: the loads on the point this step besides body forces (a rigid
     /// wall's contact force, a pressure on a loaded face), made before the

@@ -19,8 +19,12 @@
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
+#include <mpm/point_fields.h>
 #include <mpm/stress_update.h>
 #include <mpm/substepping.h>
+#include <mpm/transfer/grid_to_particle.h>
+#include <mpm/transfer/particle_to_grid.h>
+#include <mpm/transfer/point_loop.h>
 
 #include <array>
 #include <functional>
@@ -29,28 +33,6 @@
 namespace mpm
 {
   using namespace dealii;
-
-  /**
-   * The point fields a scene needs beyond those every scene stores: what
-   * its transfer, basis and macro step keep per point, what its bodies'
-   * loads and body forces read, a stick spring per rigid wall with
-   * friction, and the initial position where @p initial_position (the
-   * output of displacements, a verification) asks for it. The program and
-   * the unit tests lay out their points with it.
-   */
-  template <int dim>
-  FieldRequests
-  point_fields_needed(const IntegratorParameters<dim>             &integrator,
-                      const std::vector<BodyParameters<dim>>      &bodies,
-                      const std::vector<RigidWallParameters<dim>> &walls = {},
-                      const bool initial_position = false);
-
-  /// The stick-spring slot of each rigid wall (the walls with friction,
-  /// in order; numbers::invalid_unsigned_int for the others).
-  template <int dim>
-  std::vector<unsigned int>
-  wall_slip_slots(const std::vector<RigidWallParameters<dim>> &walls);
-
 
   /**
    * The explicit MPM step, particles -> grid -> particles:
@@ -229,95 +211,16 @@ namespace mpm
     /// (checked against it).
     double
     explicit_time_step();
-    /// Call @p f with the scene's basis on this grid (the basis class is
-    /// chosen at run time, once, and everything in @p f is compiled for it).
-    template <typename F>
-    void
-    with_scene_basis(const F &f) const;
     /// The step with basis @p basis, in the order of the update scheme.
     template <typename Basis>
     void
     advance(const Basis &basis, const double dt);
-    template <typename Basis>
-    void
-    scatter_to_grid(const Basis &basis,
-                    const bool   mass_and_momentum,
-                    const bool   forces,
-                    const double light_mass = 0.);
     /// The step's nodal masses, momenta (velocities in v_old) and forces,
     /// with USL's small-mass guard on the forces' side too (see
-    /// light_node_gradients).
+    /// ParticleToGrid::scatter).
     template <typename Basis>
     void
     scatter_masses_then_forces(const Basis &basis);
-    /// The virtual stress method: the fluid's pressure on the wetted
-    /// surface, as nodal forces added to the scattered ones.
-    template <typename Basis>
-    void
-    add_fluid_forces(const Basis &basis);
-    template <typename Basis>
-    void
-    gather_to_particles(const Basis &basis,
-                        const double dt,
-                        const bool   kinematics);
-    template <typename Basis>
-    void
-    update_kinematics(const Basis       &basis,
-                      const double       dt,
-                      const unsigned int slot);
-    /// Visit every locally owned point with its stencil (see there).
-    template <typename Basis, typename Kernel>
-    void
-    for_each_point(const Basis &basis, const Kernel &kernel);
-    /// Half-width of a point's domain in cells, per direction (GIMP).
-    Tensor<1, dim>
-    domain_half_width(const double *q) const;
-    /// L at a point from the nodal velocities in @p slot of the nodal
-    /// array @p u (the point's field, node stride @p stride). Nodes of
-    /// mass <= @p light_mass are left out (the small-mass guard where the
-    /// velocities are force-updated, else only massless nodes).
-    template <typename Stencil>
-    Tensor<2, dim>
-    velocity_gradient(const Stencil     &s,
-                      const double      *u,
-                      const unsigned int stride,
-                      const unsigned int slot,
-                      const double       light_mass) const;
-    /// The mass at or below which a node is left out of the strain rate:
-    /// the small-mass guard where the strain rate reads force-updated
-    /// velocities (USL) through gradients that do not vanish with the
-    /// weights (the linear basis), else none. The transferred velocities
-    /// of MUSL and USF are mass-weighted means of the points' velocities,
-    /// and with a smooth basis a light node's velocity, growing as 1 /
-    /// phi, enters the strain rate with grad phi, which vanishes as
-    /// phi^(1/2) or faster.
-    template <typename Basis>
-    double
-    strain_rate_light_mass() const
-    {
-      return prm.scheme == UpdateScheme::USL &&
-                 !Basis::gradient_vanishes_with_weight
-               ? min_nodal_mass
-               : 0.;
-    }
-    /// The stress term's gradients at a point adjoint to the strain
-    /// rate's small-mass guard (see there), in @p spread; false, and
-    /// @p spread untouched, if no node of the stencil is light.
-    template <typename Stencil, std::size_t n_nodes>
-    bool
-    light_node_gradients(const Stencil                       &s,
-                         const double                        *u,
-                         const unsigned int                   stride,
-                         const double                         light_mass,
-                         std::array<Tensor<1, dim>, n_nodes> &spread) const;
-    /// Store L, update volume and F by I + dt L; note a failure if the
-    /// point would invert.
-    template <typename Iterator>
-    void
-    apply_velocity_gradient(const Iterator       &p,
-                            double               *q,
-                            const Tensor<2, dim> &L,
-                            const double          dt);
 
     const IntegratorParameters<dim> prm;
     const BackgroundGrid<dim>      &grid;
@@ -339,11 +242,8 @@ namespace mpm
     TimerOutput &timer;
     MPI_Comm     comm;
 
-    /// Virtual fluid only: the wetted bodies' volume at the nodes and the
-    /// volume of a node's support in the grid (integral of its shape
-    /// function).
-    LinearAlgebra::distributed::Vector<double> fluid_volume, support_volume;
-    std::vector<double>                        wave_modulus_of_body;
+    /// Each body's P-wave modulus (0 for a rigid body: no wave crosses it).
+    std::vector<double> wave_modulus_of_body;
     /// dM/dp of each body (Material::wave_modulus_pressure_slope).
     std::vector<double> wave_modulus_pressure_slope_of_body;
     /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
@@ -355,11 +255,8 @@ namespace mpm
     double viscous_time_step = std::numeric_limits<double>::infinity();
     /// The body that sets it.
     unsigned int viscous_body = 0;
-    /// uGIMP/cpGIMP: initial domain half-width of each body's points, in
-    /// cells: half of 1 / (points per cell).
-    std::vector<double> initial_half_width_of_body;
 
-    /// The small-mass guard's nodal mass (see strain_rate_light_mass).
+    /// The small-mass guard's nodal mass (see strain_rate_light_mass()).
     const double          min_nodal_mass;
     double                t         = 0;
     double                last_dt   = 0;
@@ -369,8 +266,12 @@ namespace mpm
     /// The loads and the external work (with the clock and the diagnosis
     /// above, which it reads and sets).
     ExternalLoads<dim> loads;
-    /// The nodal velocities and their constraints.
-    GridUpdate<dim> grid_update;
+    /// The scene's basis and the loop over the points with it.
+    PointLoop<dim> loop;
+    /// The stages: P2G, the nodal velocities and their constraints, G2P.
+    ParticleToGrid<dim> to_grid;
+    GridUpdate<dim>     grid_update;
+    GridToParticle<dim> to_points;
     /// The macro steps, if the scene sets a macro time step.
     Substepper<dim> substepper;
   };

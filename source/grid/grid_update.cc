@@ -85,7 +85,7 @@ namespace mpm
     // Implicit in the damping term: unconditionally stable for any c.
     const double damping_factor = 1. / (1. + prm.damping * dt);
     const double alpha          = prm.local_damping;
-    // Newmark (see TimeIntegrator::gather_to_particles): v_new is the velocity
+    // Newmark (see GatherState): v_new is the velocity
     // that moves the points, v_old + (gamma + 1/2) dt a.
     const bool         newmark       = prm.newmark_gamma != 0.5;
     const double       motion_factor = prm.newmark_gamma + 0.5;

@@ -1,8 +1,9 @@
 // The transfer back to the points (G2P): their velocities by the scene's
 // transfer (transfer/flip_pic.h, transfer/apic.h), positions, and
 // kinematics (the strain rate L, the volume and F from I + dt L).
-#include <mpm/time_integrator.h>
-#include <mpm/time_integrator.templates.h>
+#include <mpm/transfer/grid_to_particle.h>
+#include <mpm/transfer/strain_rate.h>
+#include <mpm/transfer/transfers.h>
 
 #include <sstream>
 #include <type_traits>
@@ -10,36 +11,47 @@
 namespace mpm
 {
   template <int dim>
-  void
-  TimeIntegrator<dim>::transfer_round_trip()
+  GridToParticle<dim>::GridToParticle(
+    const IntegratorParameters<dim> &parameters,
+    MaterialPoints<dim>             &points,
+    const PointLoop<dim>            &loop,
+    const NodalState<dim>           &nodes,
+    const double                     guard_mass,
+    const double                    &time,
+    const unsigned int              &step,
+    std::string                     &failure,
+    TimerOutput                     &timer)
+    : prm(parameters)
+    , points(points)
+    , loop(loop)
+    , nodes(nodes)
+    , guard_mass(guard_mass)
+    , t(time)
+    , n_steps(step)
+    , failure(failure)
+    , timer(timer)
   {
-    with_scene_basis([&](const auto &basis) {
-      scatter_to_grid(basis, true, false);
-      grid_update.velocities_from_momentum(v_old);
-      // No force, no step: the new grid velocity is the old one.
-      grid_update.velocities_from_momentum(v_new);
-      gather_to_particles(basis, 0., false);
-    });
-    raise_if_any_failed(failure, comm);
   }
 
 
   template <int dim>
   template <typename Basis>
   void
-  TimeIntegrator<dim>::gather_to_particles(const Basis &basis,
-                                           const double dt,
-                                           const bool   kinematics)
+  GridToParticle<dim>::gather(const Basis &basis,
+                              const double dt,
+                              const bool   kinematics)
   {
     TimerOutput::Scope scope(timer, "G2P");
     const FieldLayout &l     = points.layout();
     const double      *u_all = nodes.velocities.get_values();
     // Newmark's gamma (USL, FLIP): see GridUpdate::velocities_after_forces.
-    const GatherState                          state{dt,
+    const GatherState state{dt,
                             prm.flip_fraction_of_step(dt),
                             kinematics && prm.newmark_gamma != 0.5,
                             1. / (prm.newmark_gamma + 0.5),
-                            min_nodal_mass};
+                            guard_mass};
+    const double      light_mass =
+      strain_rate_light_mass<Basis>(prm.scheme, guard_mass);
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
     const unsigned int                         fields_per_node = nodes.n_fields;
     const unsigned int *fields_of_body = nodes.field_of_body.data();
@@ -49,21 +61,23 @@ namespace mpm
     auto gather = [&](auto transfer, auto several_fields) {
       using Transfer                 = decltype(transfer);
       constexpr bool     multi_field = decltype(several_fields)::value;
-      const unsigned int stride =
-        multi_field ? fields_per_node * n_velocities : n_velocities;
-      for_each_point(basis, [&](auto &p, double *q, const auto &s) {
+      const unsigned int stride      = multi_field
+                                         ? fields_per_node * Layout::n_velocities
+                                         : Layout::n_velocities;
+      loop.for_each_point(basis, [&](auto &p, double *q, const auto &s) {
         const double *u = u_all;
         if constexpr (multi_field)
-          u +=
-            n_velocities * fields_of_body[static_cast<unsigned int>(q[l.body])];
+          u += Layout::n_velocities *
+               fields_of_body[static_cast<unsigned int>(q[l.body])];
         Tensor<1, dim> v_grid, dv_grid;
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           {
             const double        *node = u + stride * s.nodes[v];
-            const Tensor<1, dim> b    = Fields::vector<dim>(node + v_new);
+            const Tensor<1, dim> b = Fields::vector<dim>(node + Layout::v_new);
             v_grid += s.weights[v] * b;
             if constexpr (Transfer::template needs_increment<Basis>())
-              dv_grid += s.weights[v] * (b - Fields::vector<dim>(node + v_old));
+              dv_grid +=
+                s.weights[v] * (b - Fields::vector<dim>(node + Layout::v_old));
           }
         Transfer::template update_point<dim, Basis>(
           basis, s, u, stride, q, l, v_grid, dv_grid, state, affine);
@@ -72,8 +86,7 @@ namespace mpm
           apply_velocity_gradient(
             p,
             q,
-            velocity_gradient(
-              s, u, stride, v_new, strain_rate_light_mass<Basis>()),
+            velocity_gradient<dim>(s, u, stride, Layout::v_new, light_mass),
             dt);
       });
     };
@@ -89,22 +102,22 @@ namespace mpm
   template <int dim>
   template <typename Basis>
   void
-  TimeIntegrator<dim>::update_kinematics(const Basis       &basis,
+  GridToParticle<dim>::update_kinematics(const Basis       &basis,
                                          const double       dt,
                                          const unsigned int slot)
   {
     TimerOutput::Scope scope(timer, "G2P");
-    for_each_point(basis, [&](auto &p, double *q, const auto &s) {
-      apply_velocity_gradient(p,
-                              q,
-                              velocity_gradient(s,
-                                                nodes.velocities.get_values() +
-                                                  n_velocities *
-                                                    nodes.field_of(q),
-                                                nodes.n_fields * n_velocities,
-                                                slot,
-                                                0.),
-                              dt);
+    loop.for_each_point(basis, [&](auto &p, double *q, const auto &s) {
+      apply_velocity_gradient(
+        p,
+        q,
+        velocity_gradient<dim>(s,
+                               nodes.velocities.get_values() +
+                                 Layout::n_velocities * nodes.field_of(q),
+                               nodes.n_fields * Layout::n_velocities,
+                               slot,
+                               0.),
+        dt);
     });
   }
 
@@ -112,7 +125,7 @@ namespace mpm
   template <int dim>
   template <typename Iterator>
   inline void
-  TimeIntegrator<dim>::apply_velocity_gradient(const Iterator       &p,
+  GridToParticle<dim>::apply_velocity_gradient(const Iterator       &p,
                                                double               *q,
                                                const Tensor<2, dim> &L,
                                                const double          dt)
@@ -147,18 +160,17 @@ namespace mpm
   }
 
 
-  // Members of TimeIntegrator defined here, instantiated for each dimension
-  // and basis (the class itself is instantiated in time_integrator.cc).
-#define MPM_INSTANTIATE_BASIS(dim, Basis)                               \
-  template void TimeIntegrator<dim>::gather_to_particles(const Basis &, \
-                                                         const double,  \
-                                                         const bool);   \
-  template void TimeIntegrator<dim>::update_kinematics(const Basis &,   \
-                                                       const double,    \
+  // Instantiated for each dimension and basis.
+#define MPM_INSTANTIATE_BASIS(dim, Basis)                             \
+  template void GridToParticle<dim>::gather(const Basis &,            \
+                                            const double,             \
+                                            const bool);              \
+  template void GridToParticle<dim>::update_kinematics(const Basis &, \
+                                                       const double,  \
                                                        const unsigned int);
-#define MPM_INSTANTIATE(dim)                     \
-  MPM_FOR_EACH_BASIS(MPM_INSTANTIATE_BASIS, dim) \
-  template void TimeIntegrator<dim>::transfer_round_trip();
+#define MPM_INSTANTIATE(dim)          \
+  template class GridToParticle<dim>; \
+  MPM_FOR_EACH_BASIS(MPM_INSTANTIATE_BASIS, dim)
   MPM_INSTANTIATE(1)
   MPM_INSTANTIATE(2)
   MPM_INSTANTIATE(3)

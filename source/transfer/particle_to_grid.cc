@@ -3,148 +3,123 @@
 // force and point loads) scattered to the nodes of its stencil, with the
 // small-mass guard's forces; the virtual fluid's forces on the wetted
 // surface; and the check that the forces are the strain rate's adjoint.
-#include <mpm/time_integrator.h>
-#include <mpm/time_integrator.templates.h>
+#include <mpm/transfer/particle_to_grid.h>
+#include <mpm/transfer/transfers.h>
 
 #include <cmath>
 #include <type_traits>
 
 namespace mpm
 {
-  /**
-   * USL takes its strain rate from the force-updated velocities, and
-   * leaves the light nodes out of it (velocity_gradient). The internal
-   * force must then leave them out the same way, or the force's work is
-   * no longer the stress power and parting bodies gain energy
-   * (light_node_gradients): the masses come first, then the forces with
-   * the light nodes known. MUSL and USF take the strain rate from
-   * transferred velocities and need no guard: one pass.
-   */
-  template <int dim>
-  template <typename Basis>
-  void
-  TimeIntegrator<dim>::scatter_masses_then_forces(const Basis &basis)
+  namespace
   {
-    const double light_mass = strain_rate_light_mass<Basis>();
-    if (light_mass > 0)
-      {
-        scatter_to_grid(basis, true, false);
-        grid_update.velocities_from_momentum(v_old);
-        scatter_to_grid(basis, false, true, light_mass);
-      }
-    else
-      {
-        scatter_to_grid(basis, true, true);
-        grid_update.velocities_from_momentum(v_old);
-      }
-  }
-
-
-  template <int dim>
-  std::array<double, 2>
-  TimeIntegrator<dim>::internal_work_and_stress_power(
-    const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
-      &w)
-  {
-    double work = 0, power = 0;
-    with_scene_basis([&](const auto &basis) {
-      using Basis = std::decay_t<decltype(basis)>;
-      scatter_masses_then_forces(basis);
-      double       *u = nodes.velocities.get_values();
-      const double *g = nodes.sums.get_values();
-      for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+    /**
+     * The strain rate with the guard, L(w) = sum_{I heavy} (w_I - w_p) (x)
+     * grad phi_I with w_p = sum_J phi_J w_J over all nodes, is linear in
+     * the nodal velocities w. Its adjoint, the force whose work
+     * sum_J f_J . w_J is -V sigma : L(w) for every w, gives node J the
+     * stress term V sigma with the gradient
+     *   grad phi_J [J heavy] + phi_J G,   G = sum_{K light} grad phi_K:
+     * the light nodes' gradients spread over the stencil by the weights.
+     * These still sum to zero (the gradients of all nodes do, and the
+     * weights sum to one), so momentum is kept; and a light node's force
+     * now scales with phi_J, as its mass does, so its force-updated
+     * velocity stays bounded. The basis' gradients with the guard on the
+     * strain rate's side only gave parting bodies energy: two disks +5 %
+     * (MUSL) and +9 % (USF), before the guard was kept to USL.
+     */
+    template <int dim, typename Stencil, std::size_t n_nodes>
+    inline bool
+    light_node_gradients(const Stencil                       &s,
+                         const double                        *u,
+                         const unsigned int                   stride,
+                         const double                         light_mass,
+                         std::array<Tensor<1, dim>, n_nodes> &spread)
+    {
+      std::array<bool, n_nodes> light;
+      Tensor<1, dim>            light_gradients;
+      bool                      any_light = false;
+      for (unsigned int v = 0; v < n_nodes; ++v)
         {
-          const Tensor<1, dim> w_i = w(grid.owned_node_coordinates(i));
-          for (unsigned int f = 0; f < nodes.n_fields; ++f)
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                u[n_velocities * nodes.slot_of(i, f) + v_new + d] = w_i[d];
-                work += g[n_sums * nodes.slot_of(i, f) + force + d] * w_i[d];
-              }
+          light[v] =
+            u[stride * s.nodes[v] + NodalLayout<dim>::node_mass] <= light_mass;
+          if (light[v])
+            {
+              light_gradients += s.gradients[v];
+              any_light = true;
+            }
         }
-      nodes.velocities.update_ghost_values();
-      const FieldLayout &l = points.layout();
-      for_each_point(basis, [&](auto &, const double *q, const auto &s) {
-        const Tensor<2, dim> L =
-          velocity_gradient(s,
-                            nodes.velocities.get_values() +
-                              n_velocities * nodes.field_of(q),
-                            nodes.n_fields * n_velocities,
-                            v_new,
-                            strain_rate_light_mass<Basis>());
-        power +=
-          q[l.volume] * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
-      });
-    });
-    return {
-      {Utilities::MPI::sum(work, comm), Utilities::MPI::sum(power, comm)}};
+      if (!any_light)
+        return false;
+      for (unsigned int v = 0; v < n_nodes; ++v)
+        spread[v] = s.weights[v] * light_gradients +
+                    (light[v] ? Tensor<1, dim>() : s.gradients[v]);
+      return true;
+    }
+  } // namespace
+
+
+  template <int dim>
+  ParticleToGrid<dim>::ParticleToGrid(
+    const IntegratorParameters<dim> &parameters,
+    const BackgroundGrid<dim>       &grid,
+    MaterialPoints<dim>             &points,
+    const PointLoop<dim>            &loop,
+    NodalState<dim>                 &nodes,
+    ExternalLoads<dim>              &loads,
+    MultiFieldContact<dim>          *contact,
+    VirtualFluid<dim>               *virtual_fluid,
+    const double                    &time,
+    TimerOutput                     &timer)
+    : prm(parameters)
+    , grid(grid)
+    , points(points)
+    , loop(loop)
+    , nodes(nodes)
+    , loads(loads)
+    , contact(contact)
+    , virtual_fluid(virtual_fluid)
+    , t(time)
+    , timer(timer)
+  {
+    for (const auto &body : points.bodies())
+      density_of_body.push_back(body.deformable_density());
   }
 
 
-  /**
-   * The strain rate with the guard, L(w) = sum_{I heavy} (w_I - w_p) (x)
-   * grad phi_I with w_p = sum_J phi_J w_J over all nodes, is linear in
-   * the nodal velocities w. Its adjoint, the force whose work
-   * sum_J f_J . w_J is -V sigma : L(w) for every w, gives node J the
-   * stress term V sigma with the gradient
-   *   grad phi_J [J heavy] + phi_J G,   G = sum_{K light} grad phi_K:
-   * the light nodes' gradients spread over the stencil by the weights.
-   * These still sum to zero (the gradients of all nodes do, and the
-   * weights sum to one), so momentum is kept; and a light node's force
-   * now scales with phi_J, as its mass does, so its force-updated
-   * velocity stays bounded. The basis' gradients with the guard on the
-   * strain rate's side only gave parting bodies energy: two disks +5 %
-   * (MUSL) and +9 % (USF), before the guard was kept to USL.
-   */
   template <int dim>
-  template <typename Stencil, std::size_t n_nodes>
-  inline bool
-  TimeIntegrator<dim>::light_node_gradients(
-    const Stencil                       &s,
-    const double                        *u,
-    const unsigned int                   stride,
-    const double                         light_mass,
-    std::array<Tensor<1, dim>, n_nodes> &spread) const
+  void
+  ParticleToGrid<dim>::reinit()
   {
-    std::array<bool, n_nodes> light;
-    Tensor<1, dim>            light_gradients;
-    bool                      any_light = false;
-    for (unsigned int v = 0; v < n_nodes; ++v)
+    if (virtual_fluid)
       {
-        light[v] = u[stride * s.nodes[v] + node_mass] <= light_mass;
-        if (light[v])
-          {
-            light_gradients += s.gradients[v];
-            any_light = true;
-          }
+        fluid_volume.reinit(grid.make_partitioner(1));
+        support_volume.reinit(grid.make_partitioner(1));
+        for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+          support_volume.local_element(i) = grid.node_support_volume(i);
+        support_volume.update_ghost_values();
       }
-    if (!any_light)
-      return false;
-    for (unsigned int v = 0; v < n_nodes; ++v)
-      spread[v] = s.weights[v] * light_gradients +
-                  (light[v] ? Tensor<1, dim>() : s.gradients[v]);
-    return true;
   }
 
 
   template <int dim>
   template <typename Basis>
   void
-  TimeIntegrator<dim>::scatter_to_grid(const Basis &basis,
-                                       const bool   mass_and_momentum,
-                                       const bool   forces,
-                                       const double light_mass)
+  ParticleToGrid<dim>::scatter(const Basis &basis,
+                               const bool   mass_and_momentum,
+                               const bool   forces,
+                               const double light_mass)
   {
     TimerOutput::Scope scope(timer, "P2G");
     double            *g         = nodes.sums.get_values();
     const unsigned int n_entries = n_local_entries(nodes.sums);
-    for (unsigned int i = 0; i < n_entries; i += n_sums)
+    for (unsigned int i = 0; i < n_entries; i += Layout::n_sums)
       {
         if (mass_and_momentum)
-          for (unsigned int c = mass; c < force; ++c)
+          for (unsigned int c = Layout::mass; c < Layout::force; ++c)
             g[i + c] = 0;
         if (forces)
-          for (unsigned int c = force; c < n_sums; ++c)
+          for (unsigned int c = Layout::force; c < Layout::n_sums; ++c)
             g[i + c] = 0;
       }
     const bool with_gradients = contact && mass_and_momentum;
@@ -173,7 +148,7 @@ namespace mpm
     auto scatter = [&](auto transfer, auto several_fields) {
       using Transfer             = decltype(transfer);
       constexpr bool multi_field = decltype(several_fields)::value;
-      for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
+      loop.for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
         const double m     = q[l.mass];
         unsigned int field = 0;
         if constexpr (multi_field)
@@ -181,9 +156,9 @@ namespace mpm
         // The nodal sums of stencil node v, in this point's field.
         auto sums_of = [&](const unsigned int v) {
           if constexpr (multi_field)
-            return g + n_sums * (fields_per_node * s.nodes[v] + field);
+            return g + Layout::n_sums * (fields_per_node * s.nodes[v] + field);
           else
-            return g + n_sums * s.nodes[v];
+            return g + Layout::n_sums * s.nodes[v];
         };
         if (mass_and_momentum)
           {
@@ -195,9 +170,9 @@ namespace mpm
                 double              *node = sums_of(v);
                 const Tensor<1, dim> p =
                   Transfer::momentum_at_node(mv, mC, s, v);
-                node[mass] += s.weights[v] * m;
+                node[Layout::mass] += s.weights[v] * m;
                 for (unsigned int d = 0; d < dim; ++d)
-                  node[momentum + d] += s.weights[v] * p[d];
+                  node[Layout::momentum + d] += s.weights[v] * p[d];
               }
             // Contact normals of each field, and how many of its points'
             // domains (a box of side V^(1/dim) around each) hold the node:
@@ -237,13 +212,13 @@ namespace mpm
               q[l.volume] * Fields::symmetric<dim>(q + l.stress);
             const bool guarded =
               light_mass > 0 &&
-              light_node_gradients(s,
-                                   velocities +
-                                     (multi_field ? n_velocities * field : 0),
-                                   multi_field ? fields_per_node * n_velocities
-                                               : n_velocities,
-                                   light_mass,
-                                   spread);
+              light_node_gradients<dim>(
+                s,
+                velocities + (multi_field ? Layout::n_velocities * field : 0),
+                multi_field ? fields_per_node * Layout::n_velocities
+                            : Layout::n_velocities,
+                light_mass,
+                spread);
             const auto    &gradients = guarded ? spread : s.gradients;
             Tensor<1, dim> mg        = m * gravity;
             if (with_body_forces)
@@ -264,7 +239,7 @@ namespace mpm
                 {
                   const Tensor<1, dim> f =
                     s.weights[v] * mg - stress_term * gradients[v];
-                  double *node = sums_of(v) + force;
+                  double *node = sums_of(v) + Layout::force;
                   for (unsigned int d = 0; d < dim; ++d)
                     node[d] += f[d];
                 }
@@ -297,7 +272,7 @@ namespace mpm
                     const Tensor<1, dim> F = moment * d / (d * d);
                     for (unsigned int v = 0; v < Basis::n_nodes; ++v)
                       {
-                        double *node = sums_of(v) + force;
+                        double *node = sums_of(v) + Layout::force;
                         for (unsigned int c = 0; c < dim; ++c)
                           node[c] += (at_surface[v] - s.weights[v]) * F[c];
                       }
@@ -312,7 +287,7 @@ namespace mpm
                     for (unsigned int v = 0; v < Basis::n_nodes; ++v)
                       {
                         const Tensor<1, dim> f    = moment * s.gradients[v];
-                        double              *node = sums_of(v) + force;
+                        double              *node = sums_of(v) + Layout::force;
                         for (unsigned int d = 0; d < dim; ++d)
                           node[d] += f[d];
                       }
@@ -366,12 +341,12 @@ namespace mpm
   template <int dim>
   template <typename Basis>
   void
-  TimeIntegrator<dim>::add_fluid_forces(const Basis &basis)
+  ParticleToGrid<dim>::add_fluid_forces(const Basis &basis)
   {
     TimerOutput::Scope scope(timer, "virtual fluid");
     const FieldLayout &l = points.layout();
     fluid_volume         = 0.;
-    for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+    loop.for_each_point(basis, [&](auto &, const double *q, const auto &s) {
       if (virtual_fluid->wets(q[l.body]))
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           fluid_volume.local_element(s.nodes[v]) += s.weights[v] * q[l.volume];
@@ -385,7 +360,7 @@ namespace mpm
     };
     nodes.fluid_force = 0.;
     virtual_fluid->set_time(t);
-    for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
+    loop.for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
       if (!virtual_fluid->wets(q[l.body]))
         return;
       bool near_surface = false;
@@ -417,26 +392,21 @@ namespace mpm
       for (unsigned int d = 0; d < dim; ++d)
         {
           const double f = nodes.fluid_force.local_element(dim * i + d);
-          g[n_sums * i + force + d] += f;
+          g[Layout::n_sums * i + Layout::force + d] += f;
           nodes.fluid_force_total[d] += f;
         }
   }
 
 
-  // Members of TimeIntegrator defined here, instantiated for each dimension
-  // and basis (the class itself is instantiated in time_integrator.cc).
-#define MPM_INSTANTIATE_BASIS(dim, Basis)                           \
-  template void TimeIntegrator<dim>::scatter_to_grid(const Basis &, \
-                                                     const bool,    \
-                                                     const bool,    \
-                                                     const double); \
-  template void TimeIntegrator<dim>::scatter_masses_then_forces(const Basis &);
-#define MPM_INSTANTIATE(dim)                                                   \
-  MPM_FOR_EACH_BASIS(MPM_INSTANTIATE_BASIS, dim)                               \
-  template std::array<double, 2>                                               \
-  TimeIntegrator<dim>::internal_work_and_stress_power(                         \
-    const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)> \
-      &);
+  // Instantiated for each dimension and basis.
+#define MPM_INSTANTIATE_BASIS(dim, Basis)                   \
+  template void ParticleToGrid<dim>::scatter(const Basis &, \
+                                             const bool,    \
+                                             const bool,    \
+                                             const double);
+#define MPM_INSTANTIATE(dim)          \
+  template class ParticleToGrid<dim>; \
+  MPM_FOR_EACH_BASIS(MPM_INSTANTIATE_BASIS, dim)
   MPM_INSTANTIATE(1)
   MPM_INSTANTIATE(2)
   MPM_INSTANTIATE(3)

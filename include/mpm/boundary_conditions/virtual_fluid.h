@@ -41,7 +41,7 @@ namespace mpm
   /**
    * The pressure of the fluid, p(x, t) = rho_f |g| max(0, level - x_up) +
    * p_extra(x, t) (x_up: the last coordinate), and its gradient; the
-   * virtual stress method (cl-mpm; see TimeIntegrator::add_fluid_forces)
+   * virtual stress method (cl-mpm; see ParticleToGrid::add_fluid_forces)
    * turns it into nodal forces on the wetted surface. The total force the
    * fluid exerts on the bodies is measured like a reaction (statistics
    * columns fluid_force_x, ...): its vertical part is the buoyancy.

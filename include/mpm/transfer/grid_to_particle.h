@@ -1,0 +1,81 @@
+#ifndef mpm_transfer_grid_to_particle_h
+#define mpm_transfer_grid_to_particle_h
+
+#include <deal.II/base/timer.h>
+
+#include <mpm/grid/nodal_state.h>
+#include <mpm/integrator_parameters.h>
+#include <mpm/material_points.h>
+#include <mpm/transfer/point_loop.h>
+
+#include <string>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The transfer back to the points (G2P): their velocities by the scene's
+   * transfer (transfer/flip_pic.h, transfer/apic.h), their positions, and
+   * their kinematics: the strain rate L (transfer/strain_rate.h), the
+   * volume and F from I + dt L. A point that would invert is the step's
+   * failure, with its diagnosis. The loops are templates on the basis,
+   * instantiated for each in grid_to_particle.cc.
+   */
+  template <int dim>
+  class GridToParticle
+  {
+  public:
+    /// @p guard_mass: the small-mass guard's nodal mass; @p time,
+    /// @p step: the integrator's clock and step (for a diagnosis), and
+    /// @p failure: the step's first diagnosis, set here if empty.
+    GridToParticle(const IntegratorParameters<dim> &parameters,
+                   MaterialPoints<dim>             &points,
+                   const PointLoop<dim>            &loop,
+                   const NodalState<dim>           &nodes,
+                   const double                     guard_mass,
+                   const double                    &time,
+                   const unsigned int              &step,
+                   std::string                     &failure,
+                   TimerOutput                     &timer);
+
+    /// Velocities and positions from the grid velocities of a step of
+    /// @p dt, and with @p kinematics the strain rate from the
+    /// force-updated ones (USL).
+    template <typename Basis>
+    void
+    gather(const Basis &basis, const double dt, const bool kinematics);
+
+    /// The strain rate from the nodal velocities in @p slot, and volume
+    /// and F over @p dt (USF, MUSL).
+    template <typename Basis>
+    void
+    update_kinematics(const Basis       &basis,
+                      const double       dt,
+                      const unsigned int slot);
+
+  private:
+    using Layout = NodalLayout<dim>;
+
+    /// Store L, update volume and F by I + dt L; note a failure if the
+    /// point would invert.
+    template <typename Iterator>
+    void
+    apply_velocity_gradient(const Iterator       &p,
+                            double               *q,
+                            const Tensor<2, dim> &L,
+                            const double          dt);
+
+    const IntegratorParameters<dim> &prm;
+    MaterialPoints<dim>             &points;
+    const PointLoop<dim>            &loop;
+    const NodalState<dim>           &nodes;
+    const double                     guard_mass;
+    const double                    &t;
+    const unsigned int              &n_steps;
+    std::string                     &failure;
+    TimerOutput                     &timer;
+  };
+} // namespace mpm
+
+#endif
