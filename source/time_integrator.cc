@@ -62,9 +62,20 @@ namespace mpm
     // threshold.
     , min_nodal_mass(prm.small_mass_fraction * prm.mass_scaling *
                      points.min_particle_mass())
+    , limits(prm,
+             grid,
+             points,
+             this->rigid_walls,
+             velocity_region,
+             this->contact,
+             t,
+             n_steps,
+             failure,
+             timer,
+             comm)
     , loads(points,
             rigid_walls,
-            wave_modulus_of_body,
+            limits.wave_modulus_of_body(),
             t,
             n_steps,
             failure,
@@ -104,31 +115,6 @@ namespace mpm
     , substepper(*this)
   {
     setup_nodal_data();
-    for (const auto &body : points.bodies())
-      {
-        // A rigid body's material is not used: no wave crosses it.
-        wave_modulus_of_body.push_back(
-          body.rigid_velocity ? 0. : body.material->p_wave_modulus());
-        wave_modulus_pressure_slope_of_body.push_back(
-          body.rigid_velocity ? 0.
-                              : body.material->wave_modulus_pressure_slope());
-        fixed_inverse_density_of_body.push_back(
-          body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
-        // A rigid body's points keep their volume: no guard.
-        density_of_body.push_back(body.deformable_density());
-        if (!body.rigid_velocity && body.material->viscosity() > 0)
-          {
-            const double limit =
-              prm.mass_scaling * body.density *
-              Utilities::fixed_power<2>(grid.min_cell_size()) /
-              (2. * dim * body.material->viscosity());
-            if (limit < viscous_time_step)
-              {
-                viscous_time_step = limit;
-                viscous_body      = &body - points.bodies().data();
-              }
-          }
-      }
     Assert(prm.basis != BasisType::cpgimp ||
              points.layout().deformation_gradient != FieldLayout::absent,
            ExcMessage("cpGIMP needs the deformation gradient"));

@@ -22,6 +22,7 @@
 #include <mpm/point_fields.h>
 #include <mpm/stress_update.h>
 #include <mpm/substepping.h>
+#include <mpm/time_step_limit.h>
 #include <mpm/transfer/grid_to_particle.h>
 #include <mpm/transfer/particle_to_grid.h>
 #include <mpm/transfer/point_loop.h>
@@ -141,13 +142,19 @@ namespace mpm
     /// Stable time step of the current state: CFL number times
     /// h / max(c_p + |v_p|). Also checks that every point is finite.
     double
-    stable_time_step();
+    stable_time_step()
+    {
+      return limits.stable_time_step();
+    }
 
     /// The length of the explicit steps (substeps) the run starts with and
     /// what sets it, in words that name the parameter (collective): for
     /// the estimate of a run's length before it starts.
     std::pair<double, std::string>
-    initial_step();
+    initial_step()
+    {
+      return limits.initial_step();
+    }
 
     /// Called after every substep of a macro step (the progress line of a
     /// macro step that takes long).
@@ -242,20 +249,6 @@ namespace mpm
     TimerOutput &timer;
     MPI_Comm     comm;
 
-    /// Each body's P-wave modulus (0 for a rigid body: no wave crosses it).
-    std::vector<double> wave_modulus_of_body;
-    /// dM/dp of each body (Material::wave_modulus_pressure_slope).
-    std::vector<double> wave_modulus_pressure_slope_of_body;
-    /// 1 / rho0 for bodies whose wave speed is sqrt(M / rho0), else 0.
-    std::vector<double> fixed_inverse_density_of_body;
-    /// rho0 of each body: J = V rho0 / m for the guard on J.
-    std::vector<double> density_of_body;
-    /// The momentum-diffusion limit of viscous (fluid) bodies on the time
-    /// step, min rho0 h^2 / (2 dim eta); infinite without them.
-    double viscous_time_step = std::numeric_limits<double>::infinity();
-    /// The body that sets it.
-    unsigned int viscous_body = 0;
-
     /// The small-mass guard's nodal mass (see strain_rate_light_mass()).
     const double          min_nodal_mass;
     double                t         = 0;
@@ -263,6 +256,8 @@ namespace mpm
     unsigned int          n_steps   = 0;
     types::particle_index n_removed = 0;
     std::string           failure; ///< first diagnosis of this step
+    /// The time step's limits and the check of the points' state.
+    TimeStepLimit<dim> limits;
     /// The loads and the external work (with the clock and the diagnosis
     /// above, which it reads and sets).
     ExternalLoads<dim> loads;

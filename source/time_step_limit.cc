@@ -1,10 +1,7 @@
-// The size of the step: the CFL condition over the points' wave and flow
-// speeds (and the walls', regions' and rigid bodies' prescribed speeds),
-// the viscous limit, and on the way the per-point check that stops an
-// unstable run with a diagnosis (J outside its bounds, a non-finite
-// velocity, stress or volume). initial_step says which limit sets the
-// first step, for the log.
-#include <mpm/time_integrator.h>
+// The size of the step (see TimeStepLimit); initial_step says which limit
+// sets the first step, for the log.
+#include <mpm/parameters.h>
+#include <mpm/time_step_limit.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +10,61 @@
 namespace mpm
 {
   template <int dim>
+  TimeStepLimit<dim>::TimeStepLimit(
+    const IntegratorParameters<dim>     &parameters,
+    const BackgroundGrid<dim>           &grid,
+    const MaterialPoints<dim>           &points,
+    const std::vector<RigidWall<dim> *> &rigid_walls,
+    const VelocityRegion<dim>           &velocity_region,
+    MultiFieldContact<dim>              *contact,
+    const double                        &time,
+    const unsigned int                  &step,
+    std::string                         &failure,
+    TimerOutput                         &timer,
+    MPI_Comm                             comm)
+    : prm(parameters)
+    , grid(grid)
+    , points(points)
+    , rigid_walls(rigid_walls)
+    , velocity_region(velocity_region)
+    , contact(contact)
+    , t(time)
+    , n_steps(step)
+    , failure(failure)
+    , timer(timer)
+    , comm(comm)
+  {
+    for (const auto &body : points.bodies())
+      {
+        // A rigid body's material is not used: no wave crosses it.
+        wave_modulus.push_back(
+          body.rigid_velocity ? 0. : body.material->p_wave_modulus());
+        wave_modulus_pressure_slope.push_back(
+          body.rigid_velocity ? 0.
+                              : body.material->wave_modulus_pressure_slope());
+        fixed_inverse_density.push_back(
+          body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
+        // A rigid body's points keep their volume: no guard.
+        density.push_back(body.deformable_density());
+        if (!body.rigid_velocity && body.material->viscosity() > 0)
+          {
+            const double limit =
+              prm.mass_scaling * body.density *
+              Utilities::fixed_power<2>(grid.min_cell_size()) /
+              (2. * dim * body.material->viscosity());
+            if (limit < viscous_time_step)
+              {
+                viscous_time_step = limit;
+                viscous_body      = &body - points.bodies().data();
+              }
+          }
+      }
+  }
+
+
+  template <int dim>
   double
-  TimeIntegrator<dim>::stable_time_step()
+  TimeStepLimit<dim>::stable_time_step()
   {
     TimerOutput::Scope scope(timer, "check and CFL");
     const FieldLayout &l = points.layout();
@@ -32,18 +82,18 @@ namespace mpm
         // the point's pressure; under tension the modulus at rest bounds
         // it from above. Only such bodies pay for it (a branch the same
         // for a body's points).
-        double modulus = wave_modulus_of_body[b];
-        if (wave_modulus_pressure_slope_of_body[b] > 0)
-          modulus += wave_modulus_pressure_slope_of_body[b] *
-                     std::max(-trace(s) / dim, 0.);
+        double modulus = wave_modulus[b];
+        if (wave_modulus_pressure_slope[b] > 0)
+          modulus +=
+            wave_modulus_pressure_slope[b] * std::max(-trace(s) / dim, 0.);
         // With mass scaling the waves see s rho.
-        const double c2 = modulus *
-                          (fixed_inverse_density_of_body[b] > 0
-                             ? fixed_inverse_density_of_body[b]
-                             : inverse_density) /
-                          prm.mass_scaling;
+        const double c2 =
+          modulus *
+          (fixed_inverse_density[b] > 0 ? fixed_inverse_density[b]
+                                        : inverse_density) /
+          prm.mass_scaling;
         const double v2 = v.norm_square();
-        const double J  = inverse_density * density_of_body[b];
+        const double J  = inverse_density * density[b];
         // J = 0 marks a rigid body's points (no guard there).
         if ((J < prm.J_min && J > 0) || J > prm.J_max)
           if (failure.empty())
@@ -111,7 +161,7 @@ namespace mpm
 
   template <int dim>
   std::pair<double, std::string>
-  TimeIntegrator<dim>::initial_step()
+  TimeStepLimit<dim>::initial_step()
   {
     std::ostringstream why;
     if (prm.macro_time_step > 0 && prm.substeps > 0)
@@ -140,8 +190,8 @@ namespace mpm
     unsigned int b_fastest = 0;
     double       fastest   = 0;
     for (unsigned int b = 0; b < body.size(); ++b)
-      if (wave_modulus_of_body[b] / body[b].density > fastest)
-        fastest = wave_modulus_of_body[b] / body[b].density, b_fastest = b;
+      if (wave_modulus[b] / body[b].density > fastest)
+        fastest = wave_modulus[b] / body[b].density, b_fastest = b;
     const auto &b = body[b_fastest];
     why << "the CFL condition 'Simulation/CFL number' * h / max(c_p + |v_p|) "
            "with h = "
@@ -158,13 +208,7 @@ namespace mpm
   }
 
 
-  // Members of TimeIntegrator defined here, instantiated for each dimension
-  // (the class itself is instantiated in time_integrator.cc).
-#define MPM_INSTANTIATE(dim)                               \
-  template double TimeIntegrator<dim>::stable_time_step(); \
-  template std::pair<double, std::string> TimeIntegrator<dim>::initial_step();
-  MPM_INSTANTIATE(1)
-  MPM_INSTANTIATE(2)
-  MPM_INSTANTIATE(3)
-#undef MPM_INSTANTIATE
+  template class TimeStepLimit<1>;
+  template class TimeStepLimit<2>;
+  template class TimeStepLimit<3>;
 } // namespace mpm
