@@ -158,9 +158,7 @@ namespace mpm
     Tensor<1, dim> &velocity) const
   {
     const auto closed = [this](const unsigned int face) {
-      return boundary[face] == BoundaryType::fixed ||
-             boundary[face] == BoundaryType::slip ||
-             boundary[face] == BoundaryType::friction;
+      return closes_the_grid(boundary[face]);
     };
     const Tensor<1, dim> h = cell_size();
     Point<dim>           y = x;

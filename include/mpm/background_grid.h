@@ -14,6 +14,7 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <mpm/boundary_conditions/face_kinds.h>
 #include <mpm/options.h>
 
 #include <algorithm>
@@ -32,25 +33,6 @@ namespace dealii::Particles
 namespace mpm
 {
   using namespace dealii;
-
-  /// What a grid face does to the nodal velocity.
-  enum class BoundaryType
-  {
-    free,     ///< nothing
-    fixed,    ///< all velocity components zero
-    slip,     ///< normal velocity component zero
-    friction, ///< Coulomb contact: no penetration, free separation
-    absorbing ///< viscous dashpots that let waves leave (Lysmer-Kuhlemeyer)
-  };
-
-  /// The face kinds by their names ('Grid/boundary x min', ...).
-  inline const OptionTable<BoundaryType> boundary_names = {
-    {"free", BoundaryType::free},
-    {"fixed", BoundaryType::fixed},
-    {"slip", BoundaryType::slip},
-    {"friction", BoundaryType::friction},
-    {"absorbing", BoundaryType::absorbing}};
-
 
   /// The name of grid face @p face (x min, x max, y min, ...), as in its
   /// 'Grid/boundary ...' entry.

@@ -24,7 +24,7 @@ namespace mpm
    *
    * A face kind is defined here: which of the owned nodes it holds
    * (reinit()) and its rule on their velocities (apply()); a new one adds
-   * a value and a name to BoundaryType and boundary_names.
+   * a value and a name to BoundaryType and boundary_names (face_kinds.h).
    */
   template <int dim>
   class GridFaces

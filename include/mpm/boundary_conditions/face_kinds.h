@@ -1,0 +1,41 @@
+#ifndef mpm_boundary_conditions_face_kinds_h
+#define mpm_boundary_conditions_face_kinds_h
+
+// The kinds of grid face ('Grid/boundary x min', ...): their names and
+// what the grid needs to know of them. What each does to the nodal
+// velocities is GridFaces (grid_faces.cc): a new kind is a value, a name
+// and a line in closes_the_grid here, and its rule there.
+#include <mpm/options.h>
+
+namespace mpm
+{
+  /// What a grid face does to the nodal velocity.
+  enum class BoundaryType
+  {
+    free,     ///< nothing
+    fixed,    ///< all velocity components zero
+    slip,     ///< normal velocity component zero
+    friction, ///< Coulomb contact: no penetration, free separation
+    absorbing ///< viscous dashpots that let waves leave (Lysmer-Kuhlemeyer)
+  };
+
+  /// The face kinds by their names ('Grid/boundary x min', ...).
+  inline const OptionTable<BoundaryType> boundary_names = {
+    {"free", BoundaryType::free},
+    {"fixed", BoundaryType::fixed},
+    {"slip", BoundaryType::slip},
+    {"friction", BoundaryType::friction},
+    {"absorbing", BoundaryType::absorbing}};
+
+  /// Does a face of kind @p kind close the grid, so that a point that
+  /// crosses it is put back behind it (GridParameters::
+  /// put_back_behind_closed_face), not lost?
+  inline bool
+  closes_the_grid(const BoundaryType kind)
+  {
+    return kind == BoundaryType::fixed || kind == BoundaryType::slip ||
+           kind == BoundaryType::friction;
+  }
+} // namespace mpm
+
+#endif
