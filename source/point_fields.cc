@@ -51,25 +51,16 @@ namespace mpm
   }
 
 
-  template FieldRequests
-  point_fields_needed<1>(const IntegratorParameters<1> &,
-                         const std::vector<BodyParameters<1>> &,
-                         const std::vector<RigidWallParameters<1>> &,
-                         const bool);
-  template std::vector<unsigned int>
-  wall_slip_slots<1>(const std::vector<RigidWallParameters<1>> &);
-  template FieldRequests
-  point_fields_needed<2>(const IntegratorParameters<2> &,
-                         const std::vector<BodyParameters<2>> &,
-                         const std::vector<RigidWallParameters<2>> &,
-                         const bool);
-  template std::vector<unsigned int>
-  wall_slip_slots<2>(const std::vector<RigidWallParameters<2>> &);
-  template FieldRequests
-  point_fields_needed<3>(const IntegratorParameters<3> &,
-                         const std::vector<BodyParameters<3>> &,
-                         const std::vector<RigidWallParameters<3>> &,
-                         const bool);
-  template std::vector<unsigned int>
-  wall_slip_slots<3>(const std::vector<RigidWallParameters<3>> &);
+#define MPM_INSTANTIATE(dim)                               \
+  template FieldRequests point_fields_needed<dim>(         \
+    const IntegratorParameters<dim> &,                     \
+    const std::vector<BodyParameters<dim>> &,              \
+    const std::vector<RigidWallParameters<dim>> &,         \
+    const bool);                                           \
+  template std::vector<unsigned int> wall_slip_slots<dim>( \
+    const std::vector<RigidWallParameters<dim>> &);
+  MPM_INSTANTIATE(1)
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
 } // namespace mpm

@@ -19,9 +19,8 @@ namespace mpm
     , points(points)
     , timer(timer)
     , comm(comm)
+    , density_of_body(deformable_densities(points.bodies()))
   {
-    for (const auto &body : points.bodies())
-      density_of_body.push_back(body.deformable_density());
   }
 
 

@@ -258,12 +258,11 @@ namespace mpm
           // GridUpdate::apply_contact); the updated stress's replace them
           // below.
           to_grid.scatter(basis, true, usf_contact_rule);
-          grid_update.velocities_from_momentum(v_old);
+          grid_update.velocities_from_momentum(Layout::v_old);
           if (usf_contact_rule)
             grid_update.strain_rate_velocities_with_contact(dt);
-          to_points.update_kinematics(basis,
-                                      dt,
-                                      usf_contact_rule ? v_new : v_old);
+          to_points.update_kinematics(
+            basis, dt, usf_contact_rule ? Layout::v_new : Layout::v_old);
           stresses.update(dt);
           if (prm.basis == BasisType::cpgimp)
             {
@@ -275,7 +274,7 @@ namespace mpm
               // their constraints do no work.
               loads.set_step_work(work_before);
               to_grid.scatter(basis, true, true);
-              grid_update.velocities_from_momentum(v_old);
+              grid_update.velocities_from_momentum(Layout::v_old);
             }
           else
             to_grid.scatter(basis, false, true);
@@ -287,8 +286,8 @@ namespace mpm
           grid_update.velocities_after_forces(dt);
           to_points.gather(basis, dt, false);
           to_grid.scatter(basis, true, false);
-          grid_update.velocities_from_momentum(v_new, true);
-          to_points.update_kinematics(basis, dt, v_new);
+          grid_update.velocities_from_momentum(Layout::v_new, true);
+          to_points.update_kinematics(basis, dt, Layout::v_new);
           stresses.update(dt);
           break;
       }
@@ -314,13 +313,13 @@ namespace mpm
     if (light_mass > 0)
       {
         to_grid.scatter(basis, true, false);
-        grid_update.velocities_from_momentum(v_old);
+        grid_update.velocities_from_momentum(Layout::v_old);
         to_grid.scatter(basis, false, true, light_mass);
       }
     else
       {
         to_grid.scatter(basis, true, true);
-        grid_update.velocities_from_momentum(v_old);
+        grid_update.velocities_from_momentum(Layout::v_old);
       }
   }
 
@@ -343,19 +342,24 @@ namespace mpm
           for (unsigned int f = 0; f < nodes.n_fields; ++f)
             for (unsigned int d = 0; d < dim; ++d)
               {
-                u[n_velocities * nodes.slot_of(i, f) + v_new + d] = w_i[d];
-                work += g[n_sums * nodes.slot_of(i, f) + force + d] * w_i[d];
+                u[Layout::n_velocities * nodes.slot_of(i, f) + Layout::v_new +
+                  d] = w_i[d];
+                work +=
+                  g[Layout::n_sums * nodes.slot_of(i, f) + Layout::force + d] *
+                  w_i[d];
               }
         }
       nodes.velocities.update_ghost_values();
       const FieldLayout &l = points.layout();
       loop.for_each_point(basis, [&](auto &, const double *q, const auto &s) {
-        const Tensor<2, dim> L = velocity_gradient<dim>(
-          s,
-          nodes.velocities.get_values() + n_velocities * nodes.field_of(q),
-          nodes.n_fields * n_velocities,
-          v_new,
-          strain_rate_light_mass<Basis>(prm.scheme, min_nodal_mass));
+        const Tensor<2, dim> L =
+          velocity_gradient<dim>(s,
+                                 nodes.velocities.get_values() +
+                                   Layout::n_velocities * nodes.field_of(q),
+                                 nodes.n_fields * Layout::n_velocities,
+                                 Layout::v_new,
+                                 strain_rate_light_mass<Basis>(prm.scheme,
+                                                               min_nodal_mass));
         power +=
           q[l.volume] * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
       });
@@ -371,9 +375,9 @@ namespace mpm
   {
     loop.with_scene_basis([&](const auto &basis) {
       to_grid.scatter(basis, true, false);
-      grid_update.velocities_from_momentum(v_old);
+      grid_update.velocities_from_momentum(Layout::v_old);
       // No force, no step: the new grid velocity is the old one.
-      grid_update.velocities_from_momentum(v_new);
+      grid_update.velocities_from_momentum(Layout::v_new);
       to_points.gather(basis, 0., false);
     });
     raise_if_any_failed(failure, comm);

@@ -33,6 +33,7 @@ namespace mpm
     , failure(failure)
     , timer(timer)
     , comm(comm)
+    , density(deformable_densities(points.bodies()))
   {
     for (const auto &body : points.bodies())
       {
@@ -44,8 +45,6 @@ namespace mpm
                               : body.material->wave_modulus_pressure_slope());
         fixed_inverse_density.push_back(
           body.material->stiffness_is_kirchhoff() ? 1. / body.density : 0.);
-        // A rigid body's points keep their volume: no guard.
-        density.push_back(body.deformable_density());
         if (!body.rigid_velocity && body.material->viscosity() > 0)
           {
             const double limit =

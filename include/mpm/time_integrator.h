@@ -199,16 +199,8 @@ namespace mpm
   private:
     friend class Substepper<dim>;
 
-    // Components of the interleaved nodal vectors (see NodalLayout).
-    using Layout                               = NodalLayout<dim>;
-    static constexpr unsigned int mass         = Layout::mass;
-    static constexpr unsigned int momentum     = Layout::momentum;
-    static constexpr unsigned int force        = Layout::force;
-    static constexpr unsigned int n_sums       = Layout::n_sums;
-    static constexpr unsigned int node_mass    = Layout::node_mass;
-    static constexpr unsigned int v_old        = Layout::v_old;
-    static constexpr unsigned int v_new        = Layout::v_new;
-    static constexpr unsigned int n_velocities = Layout::n_velocities;
+    // Components of the interleaved nodal vectors.
+    using Layout = NodalLayout<dim>;
 
     /// One explicit step of @p dt (all that step() does without
     /// substepping).

@@ -81,9 +81,8 @@ namespace mpm
     , virtual_fluid(virtual_fluid)
     , t(time)
     , timer(timer)
+    , density_of_body(deformable_densities(points.bodies()))
   {
-    for (const auto &body : points.bodies())
-      density_of_body.push_back(body.deformable_density());
   }
 
 

@@ -154,6 +154,20 @@ namespace mpm
     std::pair<unsigned int, unsigned int>
     mesh_seed_range(const Point<dim> &cell_origin) const;
   };
+
+
+  /// BodyParameters::deformable_density() of each of @p bodies, in order
+  /// (what the stages that guard J or weight a rigid body by its volume
+  /// look up per point).
+  template <int dim>
+  inline std::vector<double>
+  deformable_densities(const std::vector<BodyParameters<dim>> &bodies)
+  {
+    std::vector<double> densities;
+    for (const auto &body : bodies)
+      densities.push_back(body.deformable_density());
+    return densities;
+  }
 } // namespace mpm
 
 #endif
