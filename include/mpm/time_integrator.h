@@ -62,10 +62,10 @@ namespace mpm
    * the smallest point mass are left out of L (their velocity replaced by
    * the point's own grid velocity, which keeps L zero for a rigid
    * translation), and the internal force leaves them out the same way
-   * (light_node_gradients): the force stays the adjoint of the strain
-   * rate, so its work is the stress power, and momentum is conserved
-   * exactly. MUSL and USF take L from transferred velocities (means of
-   * the points' velocities) and need no guard.
+   * (light_node_gradients in particle_to_grid.cc): the force stays the adjoint
+   * of the strain rate, so its work is the stress power, and momentum is
+   * conserved exactly. MUSL and USF take L from transferred velocities (means
+   * of the points' velocities) and need no guard.
    */
   template <int dim>
   class TimeIntegrator
@@ -241,7 +241,8 @@ namespace mpm
     TimerOutput &timer;
     MPI_Comm     comm;
 
-    /// The small-mass guard's nodal mass (see strain_rate_light_mass()).
+    /// The small-mass guard's nodal mass (see strain_rate_light_mass in
+    /// transfer/strain_rate.h).
     const double          min_nodal_mass;
     double                t         = 0;
     double                last_dt   = 0;

@@ -107,16 +107,15 @@ namespace mpm
                                          const unsigned int slot)
   {
     TimerOutput::Scope scope(timer, "G2P");
+    // Read once: the loop reaches the nodal state through a reference.
+    const double      *u      = nodes.velocities.get_values();
+    const unsigned int stride = nodes.n_fields * Layout::n_velocities;
     loop.for_each_point(basis, [&](auto &p, double *q, const auto &s) {
       apply_velocity_gradient(
         p,
         q,
-        velocity_gradient<dim>(s,
-                               nodes.velocities.get_values() +
-                                 Layout::n_velocities * nodes.field_of(q),
-                               nodes.n_fields * Layout::n_velocities,
-                               slot,
-                               0.),
+        velocity_gradient<dim>(
+          s, u + Layout::n_velocities * nodes.field_of(q), stride, slot, 0.),
         dt);
     });
   }

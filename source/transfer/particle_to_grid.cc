@@ -124,6 +124,8 @@ namespace mpm
     const bool with_gradients = contact && mass_and_momentum;
     if (with_gradients)
       nodes.contact_data = 0.;
+    // Empty without contact; read once, as the nodal sums are.
+    double *contact_data = nodes.contact_data.begin();
 
     const FieldLayout   &l       = points.layout();
     const Tensor<1, dim> gravity = prm.gravity;
@@ -191,9 +193,9 @@ namespace mpm
                       : q[l.volume];
                   for (unsigned int v = 0; v < Basis::n_nodes; ++v)
                     {
-                      double *data = nodes.contact_data.begin() +
-                                     MultiFieldContact<dim>::data_per_field *
-                                       nodes.slot_of(s.nodes[v], field);
+                      double *data =
+                        contact_data + MultiFieldContact<dim>::data_per_field *
+                                         nodes.slot_of(s.nodes[v], field);
                       for (unsigned int d = 0; d < dim; ++d)
                         data[d] += weight * s.gradients[v][d];
                       const Tensor<1, dim> r      = s.node_offset(v);
