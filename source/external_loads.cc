@@ -18,19 +18,11 @@ namespace mpm
     MaterialPoints<dim>                 &points,
     const std::vector<RigidWall<dim> *> &rigid_walls,
     const std::vector<double>           &wave_modulus_of_body,
-    const double                        &time,
-    const unsigned int                  &step_number,
-    std::string                         &failure,
-    TimerOutput                         &timer,
-    MPI_Comm                             comm)
+    StepContext                         &context)
     : points(points)
     , rigid_walls(rigid_walls)
     , wave_modulus_of_body(wave_modulus_of_body)
-    , time(time)
-    , step_number(step_number)
-    , failure(failure)
-    , timer(timer)
-    , comm(comm)
+    , context(context)
   {
     for (const auto &body : points.bodies())
       {
@@ -85,13 +77,13 @@ namespace mpm
             if (moved == 0)
               break;
           }
-        if (n_walls == 1 || moved == 0 || !failure.empty())
+        if (n_walls == 1 || moved == 0 || context.failed())
           continue;
         const double size = std::pow(p.get_properties()[l.volume], 1. / dim);
         if (moved > 1e-6 * size)
           {
             std::ostringstream msg;
-            msg << "step " << step_number << ", t = " << t
+            msg << "step " << context.n_steps << ", t = " << t
                 << ": material point " << p.get_id() << " of body "
                 << p.get_properties()[l.body] << " at (" << p.get_location()
                 << ") is pinched between rigid walls: put back by each in "
@@ -99,7 +91,7 @@ namespace mpm
                 << "a quarter of its size (" << 0.25 * size
                 << " m) behind one of them; the walls close on the material "
                    "faster than it can flow away, or meet";
-            failure = msg.str();
+            context.fail(msg.str());
           }
       }
     for (unsigned int w = 0; w < n_walls; ++w)
@@ -110,7 +102,7 @@ namespace mpm
       }
     // One wall puts every point back in one pass: no pinch to agree on.
     if (n_walls > 1)
-      raise_if_any_failed(failure, comm);
+      context.raise_if_failed();
   }
 
 
@@ -122,7 +114,7 @@ namespace mpm
     for (const auto &loads : {pressures, tractions})
       for (auto *f : loads)
         if (f != nullptr)
-          f->set_time(time);
+          f->set_time(context.t);
     for (auto &p : points.handler())
       {
         double *q = p.get_properties().data();
@@ -161,7 +153,8 @@ namespace mpm
             q + l.load_moment);
       }
     for (auto *wall : rigid_walls)
-      wall->act_on_points(points.handler(), l, wave_modulus_of_body, time, dt);
+      wall->act_on_points(
+        points.handler(), l, wave_modulus_of_body, context.t, dt);
     add_point_load_work(0.5 * dt);
   }
 
@@ -181,8 +174,8 @@ namespace mpm
       add_point_load_work(0.5 * dt);
     if (with_body_forces)
       {
-        TimerOutput::Scope scope(timer, "external work");
-        set_body_force_time(time + dt);
+        TimerOutput::Scope scope(context.timer, "external work");
+        set_body_force_time(context.t + dt);
         for (const auto &p : points.handler())
           {
             const double *q = p.get_properties().data();
@@ -209,7 +202,7 @@ namespace mpm
   void
   ExternalLoads<dim>::add_point_load_work(const double weight)
   {
-    TimerOutput::Scope scope(timer, "external work");
+    TimerOutput::Scope scope(context.timer, "external work");
     const FieldLayout &l = points.layout();
     // A surface load acts at the surface, d from the point, where the
     // velocity is v + L d: its power is F . v + (F (x) d) : L.
@@ -231,8 +224,8 @@ namespace mpm
   std::array<double, 2>
   ExternalLoads<dim>::totals() const
   {
-    return {{Utilities::MPI::sum(work, comm),
-             Utilities::MPI::sum(absolute_work, comm)}};
+    return {{Utilities::MPI::sum(work, context.comm),
+             Utilities::MPI::sum(absolute_work, context.comm)}};
   }
 
 
@@ -250,8 +243,8 @@ namespace mpm
   void
   ExternalLoads<dim>::restore_state(const RunState &state)
   {
-    work          = state.share_of_rank("external_work", comm);
-    absolute_work = state.share_of_rank("absolute_work", comm);
+    work          = state.share_of_rank("external_work", context.comm);
+    absolute_work = state.share_of_rank("absolute_work", context.comm);
   }
 
 

@@ -11,14 +11,12 @@ namespace mpm
   StressUpdate<dim>::StressUpdate(const IntegratorParameters<dim> &parameters,
                                   const BackgroundGrid<dim>       &grid,
                                   MaterialPoints<dim>             &points,
-                                  TimerOutput                     &timer,
-                                  MPI_Comm                         comm)
+                                  const StepContext               &context)
     : f_bar(parameters.f_bar)
     , energy_residual(parameters.energy_residual)
     , grid(grid)
     , points(points)
-    , timer(timer)
-    , comm(comm)
+    , context(context)
     , density_of_body(deformable_densities(points.bodies()))
   {
   }
@@ -33,11 +31,11 @@ namespace mpm
     if (energy_residual)
       add_stress_power(dt, true);
     {
-      TimerOutput::Scope scope(timer, "stress");
+      TimerOutput::Scope scope(context.timer, "stress");
       for (unsigned int b = 0; b < points.bodies().size(); ++b)
         if (!points.bodies()[b].rigid_velocity) // a rigid body has no stress
           points.bodies()[b].material->update_stresses(
-            points.handler(), points.layout(), b, dt, comm);
+            points.handler(), points.layout(), b, dt, context.comm);
     }
     if (energy_residual)
       add_stress_power(dt, false);
@@ -67,7 +65,7 @@ namespace mpm
   void
   StressUpdate<dim>::average_volume_change_over_cells(const double dt)
   {
-    TimerOutput::Scope               scope(timer, "F-bar");
+    TimerOutput::Scope               scope(context.timer, "F-bar");
     const FieldLayout               &l         = points.layout();
     Particles::ParticleHandler<dim> &particles = points.handler();
     const unsigned int               n_bodies  = density_of_body.size();
@@ -154,7 +152,7 @@ namespace mpm
   void
   StressUpdate<dim>::add_stress_power(const double dt, const bool before)
   {
-    TimerOutput::Scope scope(timer, "energy residual");
+    TimerOutput::Scope scope(context.timer, "energy residual");
     const FieldLayout &l     = points.layout();
     double             power = 0;
     for (const auto &p : points.handler())
@@ -180,7 +178,7 @@ namespace mpm
   double
   StressUpdate<dim>::absorbed_work() const
   {
-    return Utilities::MPI::sum(absorbed, comm);
+    return Utilities::MPI::sum(absorbed, context.comm);
   }
 
 
@@ -197,7 +195,7 @@ namespace mpm
   StressUpdate<dim>::restore_state(const RunState &state)
   {
     if (energy_residual)
-      absorbed = state.share_of_rank("stress_work", comm);
+      absorbed = state.share_of_rank("stress_work", context.comm);
   }
 
 

@@ -53,8 +53,8 @@ namespace mpm
     , grid(integrator.grid)
     , points(integrator.points)
     , nodes(integrator.nodes)
-    , timer(integrator.timer)
-    , comm(integrator.comm)
+    , timer(integrator.context.timer)
+    , comm(integrator.context.comm)
   {
   }
 
@@ -92,10 +92,10 @@ namespace mpm
   Substepper<dim>::macro_step(const double Dt)
   {
     begin();
-    const double t_end = integrator.t + Dt;
+    const double t_end = integrator.context.t + Dt;
     for (unsigned int s = 0;; ++s)
       {
-        const double remaining = t_end - integrator.t;
+        const double remaining = t_end - integrator.context.t;
         const double limit     = integrator.stable_time_step();
         if (prm.substeps > 0)
           {
@@ -105,7 +105,7 @@ namespace mpm
               {
                 std::ostringstream msg;
                 msg << "macro step " << n_macro_steps
-                    << ", t = " << integrator.t
+                    << ", t = " << integrator.context.t
                     << ": the substep Dt / S = " << dt
                     << " exceeds the stability limit " << limit
                     << " of the current state; set 'Simulation/substeps' to "
@@ -127,7 +127,7 @@ namespace mpm
               break;
           }
       }
-    integrator.t = t_end;
+    integrator.context.t = t_end;
     end(Dt);
   }
 

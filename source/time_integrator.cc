@@ -46,17 +46,16 @@ namespace mpm
                       ? virtual_fluid
                       : nullptr)
     , contact(contact != nullptr && contact->n_fields() > 1 ? contact : nullptr)
+    , context(timer, comm)
     , nodes(this->contact ? this->contact->n_fields() : 1,
             fields_of_bodies(this->contact, points.bodies().size()),
             points.layout().body,
             prm.mass_scaling,
             this->contact ? MultiFieldContact<dim>::data_per_field : 0,
             this->virtual_fluid != nullptr)
-    , stresses(parameters, grid, points, timer, comm)
+    , stresses(parameters, grid, points, context)
     , usf_contact_rule(prm.scheme == UpdateScheme::USF && this->contact &&
                        this->contact->deformable_bodies_touch())
-    , timer(timer)
-    , comm(comm)
     // Nodal masses are stored with the mass scaling (see
     // GridUpdate::velocities_from_momentum), and so is the guard's
     // threshold.
@@ -68,19 +67,8 @@ namespace mpm
              this->rigid_walls,
              velocity_region,
              this->contact,
-             t,
-             n_steps,
-             failure,
-             timer,
-             comm)
-    , loads(points,
-            rigid_walls,
-            limits.wave_modulus_of_body(),
-            t,
-            n_steps,
-            failure,
-            timer,
-            comm)
+             context)
+    , loads(points, rigid_walls, limits.wave_modulus_of_body(), context)
     , loop(grid, points, prm.basis)
     , to_grid(prm,
               grid,
@@ -90,8 +78,7 @@ namespace mpm
               loads,
               this->contact,
               this->virtual_fluid,
-              t,
-              timer)
+              context)
     , grid_update(prm,
                   grid,
                   points.bodies(),
@@ -101,17 +88,8 @@ namespace mpm
                   this->virtual_fluid,
                   loads,
                   min_nodal_mass,
-                  t,
-                  timer)
-    , to_points(prm,
-                points,
-                loop,
-                nodes,
-                min_nodal_mass,
-                t,
-                n_steps,
-                failure,
-                timer)
+                  context)
+    , to_points(prm, points, loop, nodes, min_nodal_mass, context)
     , substepper(*this)
   {
     setup_nodal_data();
@@ -204,7 +182,7 @@ namespace mpm
     if (prm.fixed_time_step == 0)
       return dt;
     if (prm.fixed_time_step > dt * (1 + 1e-12))
-      throw RunError("step " + std::to_string(n_steps) +
+      throw RunError("step " + std::to_string(context.n_steps) +
                      ": the fixed time step " +
                      std::to_string(prm.fixed_time_step) +
                      " exceeds the stability limit " + std::to_string(dt) +
@@ -220,18 +198,18 @@ namespace mpm
   TimeIntegrator<dim>::explicit_step(const double dt)
   {
     loop.with_scene_basis([&](const auto &basis) { advance(basis, dt); });
-    raise_if_any_failed(failure, comm);
+    context.raise_if_failed();
     loads.close_step(dt);
     // After the step's loads did their work at the velocities they saw.
-    loads.keep_points_in_front_of_rigid_walls(t + dt);
+    loads.keep_points_in_front_of_rigid_walls(context.t + dt);
 
     {
-      TimerOutput::Scope scope(timer, "relocate");
+      TimerOutput::Scope scope(context.timer, "relocate");
       n_removed += points.relocate(prm.out_of_grid);
     }
-    t += dt;
+    context.t += dt;
     last_dt = dt;
-    ++n_steps;
+    ++context.n_steps;
   }
 
 
@@ -364,8 +342,8 @@ namespace mpm
           q[l.volume] * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
       });
     });
-    return {
-      {Utilities::MPI::sum(work, comm), Utilities::MPI::sum(power, comm)}};
+    return {{Utilities::MPI::sum(work, context.comm),
+             Utilities::MPI::sum(power, context.comm)}};
   }
 
 
@@ -380,7 +358,7 @@ namespace mpm
       grid_update.velocities_from_momentum(Layout::v_new);
       to_points.gather(basis, 0., false);
     });
-    raise_if_any_failed(failure, comm);
+    context.raise_if_failed();
   }
 
 
@@ -391,9 +369,9 @@ namespace mpm
     // Sums over the ranks: a restart on another number of ranks keeps them
     // on its first.
     loads.save_state(state);
-    state.values["time"]           = t;
+    state.values["time"]           = context.t;
     state.values["last_dt"]        = last_dt;
-    state.values["steps"]          = n_steps;
+    state.values["steps"]          = context.n_steps;
     state.values["removed_points"] = n_removed;
     stresses.save_state(state);
     if (prm.macro_time_step > 0)
@@ -405,10 +383,10 @@ namespace mpm
   void
   TimeIntegrator<dim>::restore_state(const RunState &state)
   {
-    t         = state.get("time");
-    last_dt   = state.get("last_dt");
-    n_steps   = state.get("steps");
-    n_removed = state.get("removed_points");
+    context.t       = state.get("time");
+    last_dt         = state.get("last_dt");
+    context.n_steps = state.get("steps");
+    n_removed       = state.get("removed_points");
     loads.restore_state(state);
     stresses.restore_state(state);
     if (prm.macro_time_step > 0)

@@ -17,22 +17,14 @@ namespace mpm
     const std::vector<RigidWall<dim> *> &rigid_walls,
     const VelocityRegion<dim>           &velocity_region,
     MultiFieldContact<dim>              *contact,
-    const double                        &time,
-    const unsigned int                  &step,
-    std::string                         &failure,
-    TimerOutput                         &timer,
-    MPI_Comm                             comm)
+    StepContext                         &context)
     : prm(parameters)
     , grid(grid)
     , points(points)
     , rigid_walls(rigid_walls)
     , velocity_region(velocity_region)
     , contact(contact)
-    , t(time)
-    , n_steps(step)
-    , failure(failure)
-    , timer(timer)
-    , comm(comm)
+    , context(context)
     , density(deformable_densities(points.bodies()))
   {
     for (const auto &body : points.bodies())
@@ -65,7 +57,7 @@ namespace mpm
   double
   TimeStepLimit<dim>::stable_time_step()
   {
-    TimerOutput::Scope scope(timer, "check and CFL");
+    TimerOutput::Scope scope(context.timer, "check and CFL");
     const FieldLayout &l = points.layout();
     // max(c_p + |v_p|) <= max c_p + max |v_p|: the bound costs no square
     // root per point and gives a time step that is, if anything, smaller.
@@ -95,37 +87,38 @@ namespace mpm
         const double J  = inverse_density * density[b];
         // J = 0 marks a rigid body's points (no guard there).
         if ((J < prm.J_min && J > 0) || J > prm.J_max)
-          if (failure.empty())
+          if (!context.failed())
             {
               std::ostringstream msg;
-              msg << "step " << n_steps << ", t = " << t << ": material point "
-                  << p.get_id() << " of body " << b << " at ("
-                  << p.get_location() << ") has J = V / V0 = " << J
+              msg << context.when() << ": material point " << p.get_id()
+                  << " of body " << b << " at (" << p.get_location()
+                  << ") has J = V / V0 = " << J
                   << ", outside 'Simulation/J bounds' [" << prm.J_min << ", "
                   << prm.J_max << "]: it was "
                   << (J < 1 ? "crushed" : "torn apart")
                   << "; the run is unstable (try a smaller CFL number, MUSL, "
                      "a smooth basis) or the bounds are too tight";
-              failure = msg.str();
+              context.fail(msg.str());
             }
         // One test catches NaN/inf in velocity, stress and volume.
-        if (!std::isfinite(c2 + v2 + (s * s) + q[l.volume]) && failure.empty())
+        if (!std::isfinite(c2 + v2 + (s * s) + q[l.volume]) &&
+            !context.failed())
           {
             std::ostringstream msg;
-            msg << "step " << n_steps << ", t = " << t << ": material point "
-                << p.get_id() << " of body " << q[l.body] << " at ("
-                << p.get_location() << ") has a non-finite "
+            msg << context.when() << ": material point " << p.get_id()
+                << " of body " << q[l.body] << " at (" << p.get_location()
+                << ") has a non-finite "
                 << (!std::isfinite(v2)        ? "velocity"
                     : !std::isfinite((s * s)) ? "stress"
                                               : "density (volume)")
                 << "; the run is unstable (try a smaller CFL number, MUSL, "
                    "or damping)";
-            failure = msg.str();
+            context.fail(msg.str());
           }
         max_c2 = std::max(max_c2, c2);
         max_v2 = std::max(max_v2, v2);
       }
-    raise_if_any_failed(failure, comm);
+    context.raise_if_failed();
     // A moving rigid wall meets the material at its own speed plus the
     // material's: a step that lets the wall pass a cell puts points deep
     // inside it, whose penalty force then throws them out (a wall at
@@ -140,14 +133,15 @@ namespace mpm
     double prescribed_speed = velocity_region.speed();
     if (contact)
       {
-        contact->set_time(t);
+        contact->set_time(context.t);
         for (unsigned int r = 0; r < contact->rigid_bodies().size(); ++r)
           prescribed_speed =
             std::max(prescribed_speed, contact->rigid_velocity_of(r).norm());
       }
     const double max_speed =
-      std::sqrt(Utilities::MPI::max(max_c2, comm)) +
-      std::max(std::sqrt(Utilities::MPI::max(max_v2, comm)), prescribed_speed) +
+      std::sqrt(Utilities::MPI::max(max_c2, context.comm)) +
+      std::max(std::sqrt(Utilities::MPI::max(max_v2, context.comm)),
+               prescribed_speed) +
       wall_speed;
     // Newmark's gamma > 1/2 shrinks the stable range of omega dt from 2 to
     // sqrt(2 / gamma) (benchmarks/verification/newmark_amplification.py).

@@ -9,6 +9,7 @@
 #include <mpm/checkpoint.h>
 #include <mpm/material_points.h>
 #include <mpm/parameters.h>
+#include <mpm/step_context.h>
 
 #include <array>
 #include <sstream>
@@ -29,8 +30,8 @@ namespace mpm
    * reads the totals. The scatter adds the loads to the nodal forces.
    *
    * A load given by an expression can only be checked where it is
-   * evaluated: a magnitude beyond largest_input is noted as the step's
-   * diagnosis in @p failure, with the integrator's clock.
+   * evaluated: a magnitude beyond largest_input is kept as the step's
+   * diagnosis (StepContext::fail).
    */
   template <int dim>
   class ExternalLoads
@@ -39,11 +40,7 @@ namespace mpm
     ExternalLoads(MaterialPoints<dim>                 &points,
                   const std::vector<RigidWall<dim> *> &rigid_walls,
                   const std::vector<double>           &wave_modulus_of_body,
-                  const double                        &time,
-                  const unsigned int                  &step_number,
-                  std::string                         &failure,
-                  TimerOutput                         &timer,
-                  MPI_Comm                             comm);
+                  StepContext                         &context);
 
     /// Does a body force act on any body?
     bool
@@ -141,11 +138,7 @@ namespace mpm
     MaterialPoints<dim>                &points;
     const std::vector<RigidWall<dim> *> rigid_walls;
     const std::vector<double>          &wave_modulus_of_body;
-    const double                       &time;
-    const unsigned int                 &step_number;
-    std::string                        &failure;
-    TimerOutput                        &timer;
-    MPI_Comm                            comm;
+    StepContext                        &context;
 
     /// Each body's pressure and traction on its loaded surface and its
     /// body force (null: none).
@@ -189,14 +182,14 @@ namespace mpm
                                  const char        *name,
                                  const Point<dim>  &x) const
   {
-    if (magnitude <= largest_input || !failure.empty())
+    if (magnitude <= largest_input || context.failed())
       return;
     std::ostringstream msg;
-    msg << "step " << step_number << ", t = " << time << ": parameter '"
-        << points.bodies()[body].name << "/" << name << "' is " << magnitude
-        << " in magnitude at (" << x << "): a load must be finite and at most "
-        << largest_input << " in magnitude (Pa, or m/s^2 for a body force)";
-    failure = msg.str();
+    msg << context.when() << ": parameter '" << points.bodies()[body].name
+        << "/" << name << "' is " << magnitude << " in magnitude at (" << x
+        << "): a load must be finite and at most " << largest_input
+        << " in magnitude (Pa, or m/s^2 for a body force)";
+    context.fail(msg.str());
   }
 } // namespace mpm
 

@@ -1,13 +1,11 @@
 #ifndef mpm_stress_update_h
 #define mpm_stress_update_h
 
-#include <deal.II/base/mpi.h>
-#include <deal.II/base/timer.h>
-
 #include <mpm/background_grid.h>
 #include <mpm/checkpoint.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
+#include <mpm/step_context.h>
 
 #include <vector>
 
@@ -30,8 +28,7 @@ namespace mpm
     StressUpdate(const IntegratorParameters<dim> &parameters,
                  const BackgroundGrid<dim>       &grid,
                  MaterialPoints<dim>             &points,
-                 TimerOutput                     &timer,
-                 MPI_Comm                         comm);
+                 const StepContext               &context);
 
     /// Update the stresses of all deformable bodies over a step of @p dt.
     void
@@ -66,8 +63,7 @@ namespace mpm
     const bool                 energy_residual;
     const BackgroundGrid<dim> &grid;
     MaterialPoints<dim>       &points;
-    TimerOutput               &timer;
-    MPI_Comm                   comm;
+    const StepContext         &context;
     /// Each body's reference density (BodyParameters::deformable_density).
     std::vector<double> density_of_body;
     /// This rank's share of absorbed_work().

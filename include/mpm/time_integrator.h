@@ -20,6 +20,7 @@
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
 #include <mpm/point_fields.h>
+#include <mpm/step_context.h>
 #include <mpm/stress_update.h>
 #include <mpm/substepping.h>
 #include <mpm/time_step_limit.h>
@@ -108,12 +109,12 @@ namespace mpm
     double
     time() const
     {
-      return t;
+      return context.t;
     }
     unsigned int
     step_number() const
     {
-      return n_steps;
+      return context.n_steps;
     }
     double
     last_time_step() const
@@ -231,28 +232,25 @@ namespace mpm
     VirtualFluid<dim> *virtual_fluid;
     /// Null, or the multi-body contact (only if a body has its own field).
     MultiFieldContact<dim> *contact;
+    /// The clock, the step's first diagnosis, the timer, the communicator:
+    /// what every stage below reads.
+    StepContext context;
     /// The nodal arrays and the velocity fields they hold per node.
     NodalState<dim> nodes;
     /// F-bar, the materials' update and the stress power.
     StressUpdate<dim> stresses;
     /// USF with deformable bodies that touch (see
     /// GridUpdate::strain_rate_velocities_with_contact).
-    const bool   usf_contact_rule;
-    TimerOutput &timer;
-    MPI_Comm     comm;
+    const bool usf_contact_rule;
 
     /// The small-mass guard's nodal mass (see strain_rate_light_mass in
     /// transfer/strain_rate.h).
     const double          min_nodal_mass;
-    double                t         = 0;
     double                last_dt   = 0;
-    unsigned int          n_steps   = 0;
     types::particle_index n_removed = 0;
-    std::string           failure; ///< first diagnosis of this step
     /// The time step's limits and the check of the points' state.
     TimeStepLimit<dim> limits;
-    /// The loads and the external work (with the clock and the diagnosis
-    /// above, which it reads and sets).
+    /// The loads and the external work.
     ExternalLoads<dim> loads;
     /// The scene's basis and the loop over the points with it.
     PointLoop<dim> loop;

@@ -10,6 +10,7 @@
 #include <mpm/contact/multi_field.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
+#include <mpm/step_context.h>
 
 #include <limits>
 #include <string>
@@ -33,19 +34,13 @@ namespace mpm
   class TimeStepLimit
   {
   public:
-    /// @p time, @p step: the integrator's clock and step (for a
-    /// diagnosis); @p failure: the step's first diagnosis.
     TimeStepLimit(const IntegratorParameters<dim>     &parameters,
                   const BackgroundGrid<dim>           &grid,
                   const MaterialPoints<dim>           &points,
                   const std::vector<RigidWall<dim> *> &rigid_walls,
                   const VelocityRegion<dim>           &velocity_region,
                   MultiFieldContact<dim>              *contact,
-                  const double                        &time,
-                  const unsigned int                  &step,
-                  std::string                         &failure,
-                  TimerOutput                         &timer,
-                  MPI_Comm                             comm);
+                  StepContext                         &context);
 
     /// CFL number times h / max(c_p + |v_p|), or the viscous limit if
     /// smaller. Also checks that every point is sound; throws RunError (on
@@ -72,11 +67,7 @@ namespace mpm
     const std::vector<RigidWall<dim> *> &rigid_walls;
     const VelocityRegion<dim>           &velocity_region;
     MultiFieldContact<dim>              *contact;
-    const double                        &t;
-    const unsigned int                  &n_steps;
-    std::string                         &failure;
-    TimerOutput                         &timer;
-    MPI_Comm                             comm;
+    StepContext                         &context;
 
     std::vector<double> wave_modulus;
     /// dM/dp of each body (Material::wave_modulus_pressure_slope).

@@ -18,8 +18,7 @@ namespace mpm
                               VirtualFluid<dim>      *virtual_fluid,
                               ExternalLoads<dim>     &loads,
                               const double            light_mass,
-                              const double           &time,
-                              TimerOutput            &timer)
+                              const StepContext      &context)
     : prm(parameters)
     , grid(grid)
     , nodes(nodes)
@@ -29,8 +28,7 @@ namespace mpm
     , virtual_fluid(virtual_fluid)
     , loads(loads)
     , light_mass(light_mass)
-    , t(time)
-    , timer(timer)
+    , context(context)
   {
   }
 
@@ -52,7 +50,7 @@ namespace mpm
   GridUpdate<dim>::velocities_from_momentum(const unsigned int slot,
                                             const bool         for_strain_rate)
   {
-    TimerOutput::Scope scope(timer, "grid update");
+    TimerOutput::Scope scope(context.timer, "grid update");
     const double      *g       = nodes.sums.get_values();
     double            *u       = nodes.velocities.get_values();
     const double       inertia = prm.mass_scaling;
@@ -79,7 +77,7 @@ namespace mpm
   void
   GridUpdate<dim>::velocities_after_forces(const double dt)
   {
-    TimerOutput::Scope scope(timer, "grid update");
+    TimerOutput::Scope scope(context.timer, "grid update");
     const double      *g = nodes.sums.get_values();
     double            *u = nodes.velocities.get_values();
     // Implicit in the damping term: unconditionally stable for any c.
@@ -182,7 +180,7 @@ namespace mpm
   {
     double       *u    = nodes.velocities.get_values();
     const double *data = nodes.contact_data.get_values();
-    contact->set_time(t);
+    contact->set_time(context.t);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
     // Only MUSL with deformable bodies in contact keeps pressed_nodes.
     const bool record = dt > 0 && !pressed_nodes.empty();
@@ -214,11 +212,11 @@ namespace mpm
   void
   GridUpdate<dim>::strain_rate_velocities_with_contact(const double dt)
   {
-    TimerOutput::Scope scope(timer, "grid update");
+    TimerOutput::Scope scope(context.timer, "grid update");
     const double      *g    = nodes.sums.get_values();
     const double      *data = nodes.contact_data.get_values();
     double            *u    = nodes.velocities.get_values();
-    contact->set_time(t);
+    contact->set_time(context.t);
     // A node's fields, to try the force update on: only the sign of the
     // approach matters, so damping and Newmark's factor are left out, and
     // no reaction is measured.

@@ -17,19 +17,13 @@ namespace mpm
     const PointLoop<dim>            &loop,
     const NodalState<dim>           &nodes,
     const double                     guard_mass,
-    const double                    &time,
-    const unsigned int              &step,
-    std::string                     &failure,
-    TimerOutput                     &timer)
+    StepContext                     &context)
     : prm(parameters)
     , points(points)
     , loop(loop)
     , nodes(nodes)
     , guard_mass(guard_mass)
-    , t(time)
-    , n_steps(step)
-    , failure(failure)
-    , timer(timer)
+    , context(context)
   {
   }
 
@@ -41,7 +35,7 @@ namespace mpm
                               const double dt,
                               const bool   kinematics)
   {
-    TimerOutput::Scope scope(timer, "G2P");
+    TimerOutput::Scope scope(context.timer, "G2P");
     const FieldLayout &l     = points.layout();
     const double      *u_all = nodes.velocities.get_values();
     // Newmark's gamma (USL, FLIP): see GridUpdate::velocities_after_forces.
@@ -106,7 +100,7 @@ namespace mpm
                                          const double       dt,
                                          const unsigned int slot)
   {
-    TimerOutput::Scope scope(timer, "G2P");
+    TimerOutput::Scope scope(context.timer, "G2P");
     // Read once: the loop reaches the nodal state through a reference.
     const double      *u      = nodes.velocities.get_values();
     const unsigned int stride = nodes.n_fields * Layout::n_velocities;
@@ -135,12 +129,12 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       dF[d][d] += 1.;
     const double det_dF = determinant(dF);
-    if (!(det_dF > 0) && failure.empty())
+    if (!(det_dF > 0) && !context.failed())
       {
         std::ostringstream msg;
-        msg << "step " << n_steps << ", t = " << t << ": material point "
-            << p->get_id() << " of body " << q[l.body] << " at ("
-            << p->get_location() << ") would invert: det(I + dt L) = " << det_dF
+        msg << context.when() << ": material point " << p->get_id()
+            << " of body " << q[l.body] << " at (" << p->get_location()
+            << ") would invert: det(I + dt L) = " << det_dF
             << " <= 0 (J = det F would be "
             << (l.deformation_gradient != FieldLayout::absent
                   ? determinant(
@@ -149,7 +143,7 @@ namespace mpm
                   : det_dF)
             << "); the run is unstable (try a smaller CFL number, MUSL, or "
                "damping)";
-        failure = msg.str();
+        context.fail(msg.str());
       }
     q[l.volume] *= det_dF;
     if (l.deformation_gradient != FieldLayout::absent)

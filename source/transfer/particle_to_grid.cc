@@ -69,8 +69,7 @@ namespace mpm
     ExternalLoads<dim>              &loads,
     MultiFieldContact<dim>          *contact,
     VirtualFluid<dim>               *virtual_fluid,
-    const double                    &time,
-    TimerOutput                     &timer)
+    const StepContext               &context)
     : prm(parameters)
     , grid(grid)
     , points(points)
@@ -79,8 +78,7 @@ namespace mpm
     , loads(loads)
     , contact(contact)
     , virtual_fluid(virtual_fluid)
-    , t(time)
-    , timer(timer)
+    , context(context)
     , density_of_body(deformable_densities(points.bodies()))
   {
   }
@@ -109,7 +107,7 @@ namespace mpm
                                const bool   forces,
                                const double light_mass)
   {
-    TimerOutput::Scope scope(timer, "P2G");
+    TimerOutput::Scope scope(context.timer, "P2G");
     double            *g         = nodes.sums.get_values();
     const unsigned int n_entries = n_local_entries(nodes.sums);
     for (unsigned int i = 0; i < n_entries; i += Layout::n_sums)
@@ -139,7 +137,7 @@ namespace mpm
     const unsigned int *fields_of_body  = nodes.field_of_body.data();
     // The nodal masses of the guard (light_mass > 0), ghosted.
     const double *velocities = nodes.velocities.get_values();
-    loads.set_body_force_time(t);
+    loads.set_body_force_time(context.t);
     // Compiled once for one field and once for several, so that a scene
     // without contact carries nothing of it.
     // The guard's gradients (light_node_gradients), filled only where a
@@ -344,7 +342,7 @@ namespace mpm
   void
   ParticleToGrid<dim>::add_fluid_forces(const Basis &basis)
   {
-    TimerOutput::Scope scope(timer, "virtual fluid");
+    TimerOutput::Scope scope(context.timer, "virtual fluid");
     const FieldLayout &l = points.layout();
     fluid_volume         = 0.;
     loop.for_each_point(basis, [&](auto &, const double *q, const auto &s) {
@@ -360,7 +358,7 @@ namespace mpm
              (1. - 1e-3) * support_volume.local_element(node);
     };
     nodes.fluid_force = 0.;
-    virtual_fluid->set_time(t);
+    virtual_fluid->set_time(context.t);
     loop.for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
       if (!virtual_fluid->wets(q[l.body]))
         return;

@@ -1,8 +1,6 @@
 #ifndef mpm_grid_grid_update_h
 #define mpm_grid_grid_update_h
 
-#include <deal.II/base/timer.h>
-
 #include <mpm/background_grid.h>
 #include <mpm/boundary_conditions/grid_faces.h>
 #include <mpm/boundary_conditions/velocity_region.h>
@@ -11,6 +9,7 @@
 #include <mpm/external_loads.h>
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
+#include <mpm/step_context.h>
 
 #include <vector>
 
@@ -37,8 +36,8 @@ namespace mpm
   {
   public:
     /// @p light_mass: the small-mass guard's nodal mass (contact leaves
-    /// fields this light out of its normals); @p time: the integrator's
-    /// clock (the rigid bodies' motion).
+    /// fields this light out of its normals). The step's clock in
+    /// @p context: the rigid bodies' motion.
     GridUpdate(const IntegratorParameters<dim>        &parameters,
                const BackgroundGrid<dim>              &grid,
                const std::vector<BodyParameters<dim>> &bodies,
@@ -48,8 +47,7 @@ namespace mpm
                VirtualFluid<dim>                      *virtual_fluid,
                ExternalLoads<dim>                     &loads,
                const double                            light_mass,
-               const double                           &time,
-               TimerOutput                            &timer);
+               const StepContext                      &context);
 
     /// After the grid's partition changed (and the nodal arrays with it).
     void
@@ -115,8 +113,7 @@ namespace mpm
     VirtualFluid<dim>  *virtual_fluid;
     ExternalLoads<dim> &loads;
     const double        light_mass;
-    const double       &t;
-    TimerOutput        &timer;
+    const StepContext  &context;
     /// MUSL with deformable bodies in contact only: per owned node, did
     /// their fields press on each other at this step's force update (see
     /// apply_contact())?

@@ -1,11 +1,10 @@
 #ifndef mpm_transfer_grid_to_particle_h
 #define mpm_transfer_grid_to_particle_h
 
-#include <deal.II/base/timer.h>
-
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
+#include <mpm/step_context.h>
 #include <mpm/transfer/point_loop.h>
 
 #include <string>
@@ -26,18 +25,13 @@ namespace mpm
   class GridToParticle
   {
   public:
-    /// @p guard_mass: the small-mass guard's nodal mass; @p time,
-    /// @p step: the integrator's clock and step (for a diagnosis), and
-    /// @p failure: the step's first diagnosis, set here if empty.
+    /// @p guard_mass: the small-mass guard's nodal mass.
     GridToParticle(const IntegratorParameters<dim> &parameters,
                    MaterialPoints<dim>             &points,
                    const PointLoop<dim>            &loop,
                    const NodalState<dim>           &nodes,
                    const double                     guard_mass,
-                   const double                    &time,
-                   const unsigned int              &step,
-                   std::string                     &failure,
-                   TimerOutput                     &timer);
+                   StepContext                     &context);
 
     /// Velocities and positions from the grid velocities of a step of
     /// @p dt, and with @p kinematics the strain rate from the
@@ -71,10 +65,7 @@ namespace mpm
     const PointLoop<dim>            &loop;
     const NodalState<dim>           &nodes;
     const double                     guard_mass;
-    const double                    &t;
-    const unsigned int              &n_steps;
-    std::string                     &failure;
-    TimerOutput                     &timer;
+    StepContext                     &context;
   };
 } // namespace mpm
 

@@ -1,8 +1,6 @@
 #ifndef mpm_transfer_particle_to_grid_h
 #define mpm_transfer_particle_to_grid_h
 
-#include <deal.II/base/timer.h>
-
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <mpm/background_grid.h>
@@ -12,6 +10,7 @@
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
+#include <mpm/step_context.h>
 #include <mpm/transfer/point_loop.h>
 
 #include <vector>
@@ -34,7 +33,7 @@ namespace mpm
   class ParticleToGrid
   {
   public:
-    /// @p time: the integrator's clock (body forces, the fluid's level).
+    /// The step's clock in @p context: body forces, the fluid's level.
     ParticleToGrid(const IntegratorParameters<dim> &parameters,
                    const BackgroundGrid<dim>       &grid,
                    MaterialPoints<dim>             &points,
@@ -43,8 +42,7 @@ namespace mpm
                    ExternalLoads<dim>              &loads,
                    MultiFieldContact<dim>          *contact,
                    VirtualFluid<dim>               *virtual_fluid,
-                   const double                    &time,
-                   TimerOutput                     &timer);
+                   const StepContext               &context);
 
     /// After the grid's partition changed (the fluid's nodal volumes).
     void
@@ -83,8 +81,7 @@ namespace mpm
     MultiFieldContact<dim> *contact;
     /// Null, or a fluid acting on the bodies' surface (only if enabled).
     VirtualFluid<dim> *virtual_fluid;
-    const double      &t;
-    TimerOutput       &timer;
+    const StepContext &context;
     /// Each body's density, 0 for a rigid body (its contact normal is the
     /// gradient of its volume, not of its mass).
     std::vector<double> density_of_body;
