@@ -1,6 +1,7 @@
 // The stress stage of the step: F-bar's volume average, each body's
 // material update, and the stress power they absorb (the energy residual).
 #include <mpm/stress_update.h>
+#include <mpm/transfer/deformation_increment.h>
 
 #include <array>
 #include <vector>
@@ -163,10 +164,7 @@ namespace mpm
         if (before)
           {
             // The volume the step started from: V = V_n det(I + dt L).
-            Tensor<2, dim> dF = dt * L;
-            for (unsigned int d = 0; d < dim; ++d)
-              dF[d][d] += 1.;
-            V /= determinant(dF);
+            V /= determinant(deformation_increment(L, dt));
           }
         power += V * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
       }

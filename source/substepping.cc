@@ -15,6 +15,7 @@
 #include <mpm/parameters.h>
 #include <mpm/substepping.h>
 #include <mpm/time_integrator.h>
+#include <mpm/transfer/deformation_increment.h>
 #include <mpm/transfer/point_loop.h>
 
 #include <cmath>
@@ -173,10 +174,10 @@ namespace mpm
     const FieldLayout &l = points.layout();
     for (auto &p : points.handler())
       {
-        double        *q  = p.get_properties().data();
-        Tensor<2, dim> dF = dt * Fields::tensor<dim>(q + l.velocity_gradient);
-        for (unsigned int d = 0; d < dim; ++d)
-          dF[d][d] += 1.;
+        double              *q = p.get_properties().data();
+        const Tensor<2, dim> dF =
+          deformation_increment(Fields::tensor<dim>(q + l.velocity_gradient),
+                                dt);
         double *G = q + l.macro_step + dim;
         Fields::store(Tensor<2, dim>(dF * Fields::tensor<dim>(G)), G);
       }

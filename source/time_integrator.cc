@@ -101,55 +101,12 @@ namespace mpm
              points.layout().affine_velocity != FieldLayout::absent,
            ExcMessage("APIC needs the affine velocity field"));
 
-    // The cubic B-spline's stencil spans two cells on each side of a
-    // point's node; the boundary folding needs a second grid node inside.
-    if (prm.basis == BasisType::cubic_bspline)
-      for (unsigned int d = 0; d < dim; ++d)
-        if (grid.parameters().n_cells[d] < 2)
-          throw InputError("Simulation/basis",
-                           "cubic B-spline",
-                           "needs at least 2 grid cells in every direction "
-                           "('Grid/cells')");
-
-    if (prm.fixed_time_step > 0)
-      {
-        const double limit = stable_time_step();
-        if (prm.fixed_time_step > limit)
-          {
-            std::ostringstream allowed;
-            allowed << "exceeds the stability limit CFL number * h / "
-                       "max(c_p + |v_p|) = "
-                    << limit
-                    << " of the initial state; use a smaller step or 0";
-            std::ostringstream value;
-            value << prm.fixed_time_step;
-            throw InputError("Simulation/time step",
-                             value.str(),
-                             allowed.str());
-          }
-      }
+    limits.check_requested_steps();
     if (prm.least_squares && nodes.n_fields > 1)
       throw InputError("Simulation/macro reconstruction",
                        "least squares",
                        "works on one velocity field; a scene with bodies in "
                        "'Contact/bodies' or rigid bodies needs 'APIC'");
-    if (prm.macro_time_step > 0 && prm.substeps > 0)
-      {
-        const double limit = stable_time_step();
-        if (prm.macro_time_step / prm.substeps > limit * (1 + 1e-12))
-          {
-            std::ostringstream allowed;
-            allowed << "gives substeps of "
-                    << prm.macro_time_step / prm.substeps
-                    << " s, beyond the stability limit " << limit
-                    << " of the initial state; use at least "
-                    << std::ceil(prm.macro_time_step / limit)
-                    << ", or 0 to follow the CFL condition";
-            throw InputError("Simulation/substeps",
-                             std::to_string(prm.substeps),
-                             allowed.str());
-          }
-      }
   }
 
 
@@ -170,26 +127,7 @@ namespace mpm
     if (prm.macro_time_step > 0)
       substepper.macro_step(std::min(prm.macro_time_step, max_dt));
     else
-      explicit_step(std::min(explicit_time_step(), max_dt));
-  }
-
-
-  template <int dim>
-  double
-  TimeIntegrator<dim>::explicit_time_step()
-  {
-    const double dt = stable_time_step();
-    if (prm.fixed_time_step == 0)
-      return dt;
-    if (prm.fixed_time_step > dt * (1 + 1e-12))
-      throw RunError("step " + std::to_string(context.n_steps) +
-                     ": the fixed time step " +
-                     std::to_string(prm.fixed_time_step) +
-                     " exceeds the stability limit " + std::to_string(dt) +
-                     " of the current state (points sped up or "
-                     "compressed); use a smaller 'Simulation/time step' "
-                     "or 0 for the CFL condition");
-    return prm.fixed_time_step;
+      explicit_step(std::min(limits.explicit_time_step(), max_dt));
   }
 
 

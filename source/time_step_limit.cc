@@ -153,6 +153,66 @@ namespace mpm
 
 
   template <int dim>
+  void
+  TimeStepLimit<dim>::check_requested_steps()
+  {
+    if (prm.fixed_time_step > 0)
+      {
+        const double limit = stable_time_step();
+        if (prm.fixed_time_step > limit)
+          {
+            std::ostringstream allowed;
+            allowed << "exceeds the stability limit CFL number * h / "
+                       "max(c_p + |v_p|) = "
+                    << limit
+                    << " of the initial state; use a smaller step or 0";
+            std::ostringstream value;
+            value << prm.fixed_time_step;
+            throw InputError("Simulation/time step",
+                             value.str(),
+                             allowed.str());
+          }
+      }
+    if (prm.macro_time_step > 0 && prm.substeps > 0)
+      {
+        const double limit = stable_time_step();
+        if (prm.macro_time_step / prm.substeps > limit * (1 + 1e-12))
+          {
+            std::ostringstream allowed;
+            allowed << "gives substeps of "
+                    << prm.macro_time_step / prm.substeps
+                    << " s, beyond the stability limit " << limit
+                    << " of the initial state; use at least "
+                    << std::ceil(prm.macro_time_step / limit)
+                    << ", or 0 to follow the CFL condition";
+            throw InputError("Simulation/substeps",
+                             std::to_string(prm.substeps),
+                             allowed.str());
+          }
+      }
+  }
+
+
+  template <int dim>
+  double
+  TimeStepLimit<dim>::explicit_time_step()
+  {
+    const double dt = stable_time_step();
+    if (prm.fixed_time_step == 0)
+      return dt;
+    if (prm.fixed_time_step > dt * (1 + 1e-12))
+      throw RunError("step " + std::to_string(context.n_steps) +
+                     ": the fixed time step " +
+                     std::to_string(prm.fixed_time_step) +
+                     " exceeds the stability limit " + std::to_string(dt) +
+                     " of the current state (points sped up or "
+                     "compressed); use a smaller 'Simulation/time step' "
+                     "or 0 for the CFL condition");
+    return prm.fixed_time_step;
+  }
+
+
+  template <int dim>
   std::pair<double, std::string>
   TimeStepLimit<dim>::initial_step()
   {

@@ -207,10 +207,6 @@ namespace mpm
     /// substepping).
     void
     explicit_step(const double dt);
-    /// The explicit step's length: the CFL limit, or the fixed time step
-    /// (checked against it).
-    double
-    explicit_time_step();
     /// The step with basis @p basis, in the order of the update scheme.
     template <typename Basis>
     void

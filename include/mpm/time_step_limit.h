@@ -48,6 +48,17 @@ namespace mpm
     double
     stable_time_step();
 
+    /// The length of the next explicit step: the stable step, or the
+    /// scene's fixed time step (a RunError if the state has outgrown it).
+    double
+    explicit_time_step();
+
+    /// The scene's fixed time step, or its substeps of the macro step, must
+    /// be stable in the initial state: an InputError naming the parameter
+    /// if not (collective).
+    void
+    check_requested_steps();
+
     /// The length of the explicit steps (substeps) the run starts with and
     /// what sets it, in words that name the parameter (collective).
     std::pair<double, std::string>

@@ -1,6 +1,7 @@
 // The transfer back to the points (G2P): their velocities by the scene's
 // transfer (transfer/flip_pic.h, transfer/apic.h), positions, and
 // kinematics (the strain rate L, the volume and F from I + dt L).
+#include <mpm/transfer/deformation_increment.h>
 #include <mpm/transfer/grid_to_particle.h>
 #include <mpm/transfer/strain_rate.h>
 #include <mpm/transfer/transfers.h>
@@ -125,10 +126,8 @@ namespace mpm
   {
     const FieldLayout &l = points.layout();
     Fields::store(L, q + l.velocity_gradient);
-    Tensor<2, dim> dF = dt * L;
-    for (unsigned int d = 0; d < dim; ++d)
-      dF[d][d] += 1.;
-    const double det_dF = determinant(dF);
+    const Tensor<2, dim> dF     = deformation_increment(L, dt);
+    const double         det_dF = determinant(dF);
     if (!(det_dF > 0) && !context.failed())
       {
         std::ostringstream msg;

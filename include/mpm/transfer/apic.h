@@ -5,6 +5,7 @@
 
 #include <mpm/field_layout.h>
 #include <mpm/grid/nodal_layout.h>
+#include <mpm/transfer/deformation_increment.h>
 #include <mpm/transfer/gather_state.h>
 
 #include <array>
@@ -59,10 +60,8 @@ namespace mpm
   inline Tensor<2, dim>
   advected_affine_velocity(const Tensor<2, dim> &C, const double dt)
   {
-    Tensor<2, dim> stretch = dt * C;
-    for (unsigned int d = 0; d < dim; ++d)
-      stretch[d][d] += 1.;
-    const double det = determinant(stretch);
+    const Tensor<2, dim> stretch = deformation_increment(C, dt);
+    const double         det     = determinant(stretch);
     return det > 0 ? Tensor<2, dim>(C * invert(stretch)) : C;
   }
 

@@ -9,6 +9,7 @@
 #include <mpm/basis.h>
 #include <mpm/field_layout.h>
 #include <mpm/material_points.h>
+#include <mpm/parameters.h>
 
 #include <algorithm>
 #include <array>
@@ -47,6 +48,15 @@ namespace mpm
       // uGIMP/cpGIMP: a point's domain is h / (points per cell) wide.
       for (const auto &body : points.bodies())
         initial_half_width_of_body.push_back(0.5 / body.particles_per_cell);
+      // The cubic B-spline's stencil spans two cells on each side of a
+      // point's node; the boundary folding needs a second grid node inside.
+      if (basis_type == BasisType::cubic_bspline)
+        for (unsigned int d = 0; d < dim; ++d)
+          if (grid.parameters().n_cells[d] < 2)
+            throw InputError("Simulation/basis",
+                             "cubic B-spline",
+                             "needs at least 2 grid cells in every direction "
+                             "('Grid/cells')");
     }
 
     /// Call @p f with the scene's basis on this grid (the basis class is
