@@ -83,6 +83,8 @@ namespace mpm
         if (moved > 1e-6 * size)
           {
             std::ostringstream msg;
+            // The walls' time t (the end of the step), not the step's start
+            // that StepContext::when() names.
             msg << "step " << context.n_steps << ", t = " << t
                 << ": material point " << p.get_id() << " of body "
                 << p.get_properties()[l.body] << " at (" << p.get_location()

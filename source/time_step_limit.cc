@@ -156,9 +156,14 @@ namespace mpm
   void
   TimeStepLimit<dim>::check_requested_steps()
   {
-    if (prm.fixed_time_step > 0)
+    const bool fixed    = prm.fixed_time_step > 0;
+    const bool substeps = prm.macro_time_step > 0 && prm.substeps > 0;
+    if (!fixed && !substeps)
+      return;
+    // One pass over the points (collective) serves both checks.
+    const double limit = stable_time_step();
+    if (fixed)
       {
-        const double limit = stable_time_step();
         if (prm.fixed_time_step > limit)
           {
             std::ostringstream allowed;
@@ -173,9 +178,8 @@ namespace mpm
                              allowed.str());
           }
       }
-    if (prm.macro_time_step > 0 && prm.substeps > 0)
+    if (substeps)
       {
-        const double limit = stable_time_step();
         if (prm.macro_time_step / prm.substeps > limit * (1 + 1e-12))
           {
             std::ostringstream allowed;
