@@ -15,14 +15,13 @@ namespace mpm
 {
   template <int dim>
   ExternalLoads<dim>::ExternalLoads(
-    MaterialPoints<dim>                 &points,
-    const std::vector<RigidWall<dim> *> &rigid_walls,
-    const std::vector<double>           &wave_modulus_of_body,
-    StepContext                         &context)
-    : points(points)
-    , rigid_walls(rigid_walls)
+    const StepParts<dim>      &parts,
+    const std::vector<double> &wave_modulus_of_body)
+    : points(parts.points)
+    , rigid_walls(parts.rigid_walls)
     , wave_modulus_of_body(wave_modulus_of_body)
-    , context(context)
+    , context(parts.context)
+    , account(parts.work)
   {
     for (const auto &body : points.bodies())
       {
@@ -99,8 +98,8 @@ namespace mpm
     for (unsigned int w = 0; w < n_walls; ++w)
       {
         rigid_walls[w]->add_impulse(reaction[w]);
-        work += work_of_wall[w];
-        absolute_work += std::abs(work_of_wall[w]);
+        account.external += work_of_wall[w];
+        account.absolute_external += std::abs(work_of_wall[w]);
       }
     // One wall puts every point back in one pass: no pinch to agree on.
     if (n_walls > 1)
@@ -186,8 +185,8 @@ namespace mpm
           }
       }
     step_work += 0.5 * dt * body_force_power;
-    work += step_work;
-    absolute_work += std::abs(step_work);
+    account.external += step_work;
+    account.absolute_external += std::abs(step_work);
     step_work        = 0;
     body_force_power = 0;
   }
@@ -219,34 +218,6 @@ namespace mpm
                                   Fields::tensor<dim>(q + l.velocity_gradient));
         step_work += weight * power;
       }
-  }
-
-
-  template <int dim>
-  std::array<double, 2>
-  ExternalLoads<dim>::totals() const
-  {
-    return {{Utilities::MPI::sum(work, context.comm),
-             Utilities::MPI::sum(absolute_work, context.comm)}};
-  }
-
-
-  template <int dim>
-  void
-  ExternalLoads<dim>::save_state(RunState &state) const
-  {
-    const auto [w, a]             = totals();
-    state.values["external_work"] = w;
-    state.values["absolute_work"] = a;
-  }
-
-
-  template <int dim>
-  void
-  ExternalLoads<dim>::restore_state(const RunState &state)
-  {
-    work          = state.share_of_rank("external_work", context.comm);
-    absolute_work = state.share_of_rank("absolute_work", context.comm);
   }
 
 

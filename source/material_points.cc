@@ -107,25 +107,25 @@ namespace mpm
     for (unsigned int b = 0; b < body_list.size(); ++b)
       {
         const auto &body = body_list[b];
-        // The difference step of the velocity gradient (APIC's initial
-        // C_p = grad v0): a fourth-order formula with a step of 1e-3 cells
-        // is exact for affine fields up to round-off of about 1e-13.
+        // The initial velocity and displacement are differentiated (APIC's
+        // initial C_p = grad v0, the initial F = I + grad u0): a
+        // fourth-order formula with a step of 1e-3 cells is exact for
+        // affine fields up to round-off of about 1e-13.
+        const auto differentiable = [&](const std::vector<std::string> &formula,
+                                        const std::string              &entry) {
+          auto f = Parse::vector_function<dim>(formula,
+                                               body.constants,
+                                               body.name + "/" + entry,
+                                               1e-3 * grid.min_cell_size());
+          f->set_formula(AutoDerivativeFunction<dim>::FourthOrder);
+          return f;
+        };
         const auto velocity =
-          Parse::vector_function<dim>(body.initial_velocity,
-                                      body.constants,
-                                      body.name + "/initial velocity",
-                                      1e-3 * grid.min_cell_size());
-        velocity->set_formula(AutoDerivativeFunction<dim>::FourthOrder);
+          differentiable(body.initial_velocity, "initial velocity");
         std::unique_ptr<FunctionParser<dim>> displacement;
         if (body.is_displaced())
-          {
-            displacement =
-              Parse::vector_function<dim>(body.initial_displacement,
-                                          body.constants,
-                                          body.name + "/initial displacement",
-                                          1e-3 * grid.min_cell_size());
-            displacement->set_formula(AutoDerivativeFunction<dim>::FourthOrder);
-          }
+          displacement =
+            differentiable(body.initial_displacement, "initial displacement");
         std::unique_ptr<FunctionParser<dim>> stress;
         if (body.is_prestressed())
           stress = Parse::vector_function<dim>(body.initial_stress,

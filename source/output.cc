@@ -50,18 +50,70 @@ namespace mpm
               }};
     }
 
-    /// The maker of a field the points store as one number at @p slot
-    /// (mass, volume, body): the value is written as it is stored.
+    /// What makes an entry's arrays for a scene (see PointFieldEntry).
     template <int dim>
-    std::function<void(const FieldContext<dim> &,
-                       std::vector<PointField<dim>> &)>
+    using FieldMaker = std::function<void(const FieldContext<dim> &,
+                                          std::vector<PointField<dim>> &)>;
+
+    /// The maker of the one field that @p make returns for the context.
+    template <int dim, typename Make>
+    FieldMaker<dim>
+    one_field(const Make make)
+    {
+      return
+        [make](const FieldContext<dim> &c, std::vector<PointField<dim>> &out) {
+          out.push_back(make(c));
+        };
+    }
+
+    /// The maker of a vector field computed by @p value from a point (its
+    /// iterator) and the layout.
+    template <int dim>
+    FieldMaker<dim>
+    point_vector(const char *name,
+                 Tensor<1, dim> (*value)(const PointIterator<dim> &,
+                                         const FieldLayout &))
+    {
+      return one_field<dim>([name, value](const FieldContext<dim> &c) {
+        return PointField<dim>{name,
+                               dim,
+                               vector,
+                               [&l = c.l, value](const PointIterator<dim> &p,
+                                                 double                   *v) {
+                                 const Tensor<1, dim> x = value(p, l);
+                                 for (unsigned int d = 0; d < dim; ++d)
+                                   v[d] = x[d];
+                               }};
+      });
+    }
+
+    /// The maker of a field computed by @p invariant from each point's
+    /// Cauchy stress in 3D (with the out-of-plane stress in 2D).
+    template <int dim, typename Invariant>
+    FieldMaker<dim>
+    stress_invariant(const char *name, const Invariant invariant)
+    {
+      return one_field<dim>([name, invariant](const FieldContext<dim> &c) {
+        return scalar_field<dim>(
+          name, [&l = c.l, &bodies = c.bodies, invariant](const double *q) {
+            return invariant(
+              bodies[q[l.body]].material->cauchy_stress_3d(q, l));
+          });
+      });
+    }
+
+    /// The maker of a field the points store as one number at @p slot
+    /// (mass, volume, body, plastic strain, ...): the value is written as
+    /// it is stored, or 0 if the scene's points do not store it.
+    template <int dim>
+    FieldMaker<dim>
     stored_scalar(const char *name, unsigned int FieldLayout::*slot)
     {
-      return [name, slot](const FieldContext<dim>      &c,
-                          std::vector<PointField<dim>> &out) {
-        out.push_back(scalar_field<dim>(
-          name, [&l = c.l, slot](const double *q) { return q[l.*slot]; }));
-      };
+      return one_field<dim>([name, slot](const FieldContext<dim> &c) {
+        return scalar_field<dim>(name, [i = c.l.*slot](const double *q) {
+          return i == FieldLayout::absent ? 0. : q[i];
+        });
+      });
     }
 
     /// One point field of 'Output/fields': its name there, what the help
@@ -70,12 +122,10 @@ namespace mpm
     template <int dim>
     struct PointFieldEntry
     {
-      const char *name;
-      const char *note;
-      bool        by_default;
-      std::function<void(const FieldContext<dim> &,
-                         std::vector<PointField<dim>> &)>
-        add;
+      const char     *name;
+      const char     *note;
+      bool            by_default;
+      FieldMaker<dim> add;
     };
 
     /**
@@ -94,24 +144,21 @@ namespace mpm
         {"velocity",
          "",
          true,
-         [](const F &c, P &out) {
-           out.push_back(
-             {"velocity", dim, vector, [&l = c.l](const It &p, double *v) {
-                for (unsigned int d = 0; d < dim; ++d)
-                  v[d] = p->get_properties()[l.velocity + d];
-              }});
-         }},
+         point_vector<dim>("velocity",
+                           [](const It &p, const FieldLayout &l) {
+                             return Fields::vector<dim>(
+                               p->get_properties().data() + l.velocity);
+                           })},
         {"displacement",
          "",
          true,
-         [](const F &c, P &out) {
-           out.push_back(
-             {"displacement", dim, vector, [&l = c.l](const It &p, double *v) {
-                for (unsigned int d = 0; d < dim; ++d)
-                  v[d] = p->get_location()[d] -
-                         p->get_properties()[l.initial_position + d];
-              }});
-         }},
+         point_vector<dim>("displacement",
+                           [](const It &p, const FieldLayout &l) {
+                             return p->get_location() -
+                                    Point<dim>(Fields::vector<dim>(
+                                      p->get_properties().data() +
+                                      l.initial_position));
+                           })},
         {"stress",
          "",
          true,
@@ -168,56 +215,32 @@ namespace mpm
         {"plastic strain",
          "equivalent, 0 for elastic bodies",
          false,
-         [](const F &c, P &out) {
-           out.push_back(
-             scalar_field<dim>("plastic_strain", [&l = c.l](const double *q) {
-               return l.plastic_strain == FieldLayout::absent
-                        ? 0.
-                        : q[l.plastic_strain];
-             }));
-         }},
+         stored_scalar<dim>("plastic_strain", &FieldLayout::plastic_strain)},
         {"opening",
          "the log volume a cohesionless body gained at zero stress, where "
          "its grains parted; 0 elsewhere",
          false,
-         [](const F &c, P &out) {
-           out.push_back(
-             scalar_field<dim>("opening", [&l = c.l](const double *q) {
-               return l.opening == FieldLayout::absent ? 0. : q[l.opening];
-             }));
-         }},
+         stored_scalar<dim>("opening", &FieldLayout::opening)},
         {"damage",
          "d, 0 for bodies without damage",
          false,
-         [](const F &c, P &out) {
-           out.push_back(
-             scalar_field<dim>("damage", [&l = c.l](const double *q) {
-               return l.damage == FieldLayout::absent ? 0. : q[l.damage];
-             }));
-         }},
+         stored_scalar<dim>("damage", &FieldLayout::damage)},
         {"pressure",
          "-tr(sigma)/3, with the out-of-plane stress in 2D",
          false,
-         [](const F &c, P &out) {
-           out.push_back(scalar_field<dim>(
-             "pressure", [&l = c.l, &bodies = c.bodies](const double *q) {
-               return -trace(
-                        bodies[q[l.body]].material->cauchy_stress_3d(q, l)) /
-                      3.;
-             }));
-         }},
+         stress_invariant<dim>("pressure",
+                               [](const SymmetricTensor<2, 3> &s) {
+                                 return -trace(s) / 3.;
+                               })},
         {"von Mises stress",
          "sqrt(3/2 s:s), likewise",
          false,
-         [](const F &c, P &out) {
-           out.push_back(scalar_field<dim>(
-             "von_Mises_stress",
-             [&l = c.l, &bodies = c.bodies](const double *q) {
-               const SymmetricTensor<2, 3> s =
-                 deviator(bodies[q[l.body]].material->cauchy_stress_3d(q, l));
-               return std::sqrt(1.5 * (s * s));
-             }));
-         }}};
+         stress_invariant<dim>("von_Mises_stress",
+                               [](const SymmetricTensor<2, 3> &sigma) {
+                                 const SymmetricTensor<2, 3> s =
+                                   deviator(sigma);
+                                 return std::sqrt(1.5 * (s * s));
+                               })}};
       return table;
     }
 

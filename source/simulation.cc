@@ -642,13 +642,10 @@ namespace mpm
     // Before anything is written: a run that fails keeps its last good
     // output.
     stop_if_not_finite(s, extra);
-    const auto [work, absolute_work] = integrator->external_loads().totals();
+    const auto [work, absolute_work, absorbed] =
+      integrator->work_account().totals(comm);
     const auto [put_in, residual] =
-      energy_guard->check(s,
-                          work,
-                          absolute_work,
-                          integrator->stress_update().absorbed_work(),
-                          integrator->time());
+      energy_guard->check(s, work, absolute_work, absorbed, integrator->time());
     if (integrator_parameters.energy_residual)
       extra.push_back(put_in > 0 ? residual / put_in : 0.);
     // A body without points (or without a deposit) has no extents: the

@@ -9,16 +9,14 @@
 namespace mpm
 {
   template <int dim>
-  StressUpdate<dim>::StressUpdate(const IntegratorParameters<dim> &parameters,
-                                  const BackgroundGrid<dim>       &grid,
-                                  MaterialPoints<dim>             &points,
-                                  const StepContext               &context)
-    : f_bar(parameters.f_bar)
-    , energy_residual(parameters.energy_residual)
-    , grid(grid)
-    , points(points)
-    , context(context)
+  StressUpdate<dim>::StressUpdate(const StepParts<dim> &parts)
+    : f_bar(parts.parameters.f_bar)
+    , energy_residual(parts.parameters.energy_residual)
+    , grid(parts.grid)
+    , points(parts.points)
+    , context(parts.context)
     , density_of_body(deformable_densities(points.bodies()))
+    , account(parts.work)
   {
   }
 
@@ -168,32 +166,7 @@ namespace mpm
           }
         power += V * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
       }
-    absorbed += 0.5 * dt * power;
-  }
-
-
-  template <int dim>
-  double
-  StressUpdate<dim>::absorbed_work() const
-  {
-    return Utilities::MPI::sum(absorbed, context.comm);
-  }
-
-
-  template <int dim>
-  void
-  StressUpdate<dim>::save_state(RunState &state) const
-  {
-    state.values["stress_work"] = absorbed_work();
-  }
-
-
-  template <int dim>
-  void
-  StressUpdate<dim>::restore_state(const RunState &state)
-  {
-    if (energy_residual)
-      absorbed = state.share_of_rank("stress_work", context.comm);
+    account.absorbed += 0.5 * dt * power;
   }
 
 

@@ -51,12 +51,46 @@ namespace mpm
   Substepper<dim>::Substepper(TimeIntegrator<dim> &integrator)
     : integrator(integrator)
     , prm(integrator.prm)
-    , grid(integrator.grid)
-    , points(integrator.points)
+    , grid(integrator.parts.grid)
+    , points(integrator.parts.points)
     , nodes(integrator.nodes)
-    , timer(integrator.context.timer)
-    , comm(integrator.context.comm)
+    , context(integrator.context)
   {
+    if (prm.least_squares && nodes.n_fields > 1)
+      throw InputError("Simulation/macro reconstruction",
+                       "least squares",
+                       "works on one velocity field; a scene with bodies in "
+                       "'Contact/bodies' or rigid bodies needs 'APIC'");
+  }
+
+
+  template <int dim>
+  template <typename Function>
+  void
+  Substepper<dim>::for_each_macro_field(const Function &f)
+  {
+    TimerOutput::Scope scope(context.timer, "macro step");
+    const unsigned int macro_step = points.layout().macro_step;
+    for (auto &p : points.handler())
+      f(p, p.get_properties().data() + macro_step);
+  }
+
+
+  template <int dim>
+  template <typename Basis, typename Function>
+  void
+  Substepper<dim>::for_each_secant_target(const Basis    &basis,
+                                          const double    Dt,
+                                          const Function &f)
+  {
+    const FieldLayout &l = points.layout();
+    integrator.loop.for_each_point(
+      basis, [&](auto &p, const double *q, const auto &s) {
+        f(q,
+          s,
+          q[l.mass],
+          SecantTargets<dim>(p->get_location(), q + l.macro_step, Dt));
+      });
   }
 
 
@@ -93,10 +127,10 @@ namespace mpm
   Substepper<dim>::macro_step(const double Dt)
   {
     begin();
-    const double t_end = integrator.context.t + Dt;
+    const double t_end = context.t + Dt;
     for (unsigned int s = 0;; ++s)
       {
-        const double remaining = t_end - integrator.context.t;
+        const double remaining = t_end - context.t;
         const double limit     = integrator.stable_time_step();
         if (prm.substeps > 0)
           {
@@ -105,8 +139,7 @@ namespace mpm
             if (dt > limit * (1 + 1e-12))
               {
                 std::ostringstream msg;
-                msg << "macro step " << n_macro_steps
-                    << ", t = " << integrator.context.t
+                msg << "macro step " << n_macro_steps << ", t = " << context.t
                     << ": the substep Dt / S = " << dt
                     << " exceeds the stability limit " << limit
                     << " of the current state; set 'Simulation/substeps' to "
@@ -128,7 +161,7 @@ namespace mpm
               break;
           }
       }
-    integrator.context.t = t_end;
+    context.t = t_end;
     end(Dt);
   }
 
@@ -137,14 +170,10 @@ namespace mpm
   void
   Substepper<dim>::begin()
   {
-    TimerOutput::Scope scope(timer, "macro step");
-    const FieldLayout &l = points.layout();
-    for (auto &p : points.handler())
-      {
-        double *m = p.get_properties().data() + l.macro_step;
-        Fields::store(Tensor<1, dim>(p.get_location()), m);
-        Fields::store(Tensor<2, dim>(unit_symmetric_tensor<dim>()), m + dim);
-      }
+    for_each_macro_field([](auto &p, double *m) {
+      Fields::store(Tensor<1, dim>(p.get_location()), m);
+      Fields::store(Tensor<2, dim>(unit_symmetric_tensor<dim>()), m + dim);
+    });
   }
 
 
@@ -170,17 +199,12 @@ namespace mpm
   void
   Substepper<dim>::accumulate_increment(const double dt)
   {
-    TimerOutput::Scope scope(timer, "macro step");
-    const FieldLayout &l = points.layout();
-    for (auto &p : points.handler())
-      {
-        double              *q = p.get_properties().data();
-        const Tensor<2, dim> dF =
-          deformation_increment(Fields::tensor<dim>(q + l.velocity_gradient),
-                                dt);
-        double *G = q + l.macro_step + dim;
-        Fields::store(Tensor<2, dim>(dF * Fields::tensor<dim>(G)), G);
-      }
+    const unsigned int L = points.layout().velocity_gradient;
+    for_each_macro_field([&](auto &p, double *m) {
+      const Tensor<2, dim> dF = deformation_increment(
+        Fields::tensor<dim>(p.get_properties().data() + L), dt);
+      Fields::store(Tensor<2, dim>(dF * Fields::tensor<dim>(m + dim)), m + dim);
+    });
   }
 
 
@@ -195,18 +219,12 @@ namespace mpm
   void
   Substepper<dim>::swap_positions()
   {
-    {
-      TimerOutput::Scope scope(timer, "macro step");
-      const FieldLayout &l = points.layout();
-      for (auto &p : points.handler())
-        {
-          double          *m     = p.get_properties().data() + l.macro_step;
-          const Point<dim> other = Point<dim>(Fields::vector<dim>(m));
-          Fields::store(Tensor<1, dim>(p.get_location()), m);
-          p.set_location(other);
-        }
-    }
-    TimerOutput::Scope scope(timer, "relocate");
+    for_each_macro_field([](auto &p, double *m) {
+      const Point<dim> other = Point<dim>(Fields::vector<dim>(m));
+      Fields::store(Tensor<1, dim>(p.get_location()), m);
+      p.set_location(other);
+    });
+    TimerOutput::Scope scope(context.timer, "relocate");
     integrator.n_removed += points.relocate(prm.out_of_grid);
   }
 
@@ -216,31 +234,33 @@ namespace mpm
   void
   Substepper<dim>::scatter_targets(const Basis &basis, const double Dt)
   {
-    TimerOutput::Scope scope(timer, "macro step");
+    TimerOutput::Scope scope(context.timer, "macro step");
     double            *g         = nodes.sums.get_values();
     const unsigned int n_entries = n_local_entries(nodes.sums);
     for (unsigned int i = 0; i < n_entries; ++i)
       g[i] = 0;
-    const FieldLayout &l = points.layout();
-    integrator.loop.for_each_point(
-      basis, [&](auto &p, const double *q, const auto &s) {
-        const double             m = q[l.mass];
-        const SecantTargets<dim> target(p->get_location(),
-                                        q + l.macro_step,
-                                        Dt);
-        const Tensor<1, dim>     mv    = m * target.velocity;
-        const Tensor<2, dim>     mC    = m * target.gradient;
-        const unsigned int       field = nodes.field_of(q);
-        for (unsigned int v = 0; v < Basis::n_nodes; ++v)
-          {
-            double *node =
-              g + Layout::n_sums * nodes.slot_of(s.nodes[v], field);
-            const Tensor<1, dim> pk = mv + mC * s.node_offset(v);
-            node[Layout::mass] += s.weights[v] * m;
-            for (unsigned int d = 0; d < dim; ++d)
-              node[Layout::momentum + d] += s.weights[v] * pk[d];
-          }
-      });
+    for_each_secant_target(basis,
+                           Dt,
+                           [&](const double             *q,
+                               const auto               &s,
+                               const double              m,
+                               const SecantTargets<dim> &target) {
+                             const Tensor<1, dim> mv    = m * target.velocity;
+                             const Tensor<2, dim> mC    = m * target.gradient;
+                             const unsigned int   field = nodes.field_of(q);
+                             for (unsigned int v = 0; v < Basis::n_nodes; ++v)
+                               {
+                                 double *node =
+                                   g + Layout::n_sums *
+                                         nodes.slot_of(s.nodes[v], field);
+                                 const Tensor<1, dim> pk =
+                                   mv + mC * s.node_offset(v);
+                                 node[Layout::mass] += s.weights[v] * m;
+                                 for (unsigned int d = 0; d < dim; ++d)
+                                   node[Layout::momentum + d] +=
+                                     s.weights[v] * pk[d];
+                               }
+                           });
     nodes.sums.compress(VectorOperation::add);
   }
 
@@ -294,7 +314,7 @@ namespace mpm
   Substepper<dim>::solve_least_squares_reconstruction(const Basis &basis,
                                                       const double Dt)
   {
-    TimerOutput::Scope                 scope(timer, "macro least squares");
+    TimerOutput::Scope scope(context.timer, "macro least squares");
     const Utilities::MPI::Partitioner &partition = grid.node_partitioner();
     const IndexSet                    &owned = partition.locally_owned_range();
     IndexSet                           relevant = owned;
@@ -305,11 +325,13 @@ namespace mpm
     for (unsigned int i = 0; i < n_local; ++i)
       global[i] = partition.local_to_global(i);
 
-    const FieldLayout &l      = points.layout();
-    const double       lambda = prm.least_squares_weight *
+    const double lambda = prm.least_squares_weight *
                           Utilities::fixed_power<2>(grid.min_cell_size());
     // The couplings: every pair of nodes of a point's stencil.
-    TrilinosWrappers::SparsityPattern pattern(owned, owned, relevant, comm);
+    TrilinosWrappers::SparsityPattern                   pattern(owned,
+                                              owned,
+                                              relevant,
+                                              context.comm);
     std::array<types::global_dof_index, Basis::n_nodes> stencil;
     integrator.loop.for_each_point(
       basis, [&](auto &, const double *, const auto &s) {
@@ -331,16 +353,17 @@ namespace mpm
     std::array<TrilinosWrappers::MPI::Vector, dim> rhs, solution;
     for (unsigned int d = 0; d < dim; ++d)
       {
-        rhs[d].reinit(owned, relevant, comm, true);
-        solution[d].reinit(owned, comm);
+        rhs[d].reinit(owned, relevant, context.comm, true);
+        solution[d].reinit(owned, context.comm);
       }
     std::array<double, Basis::n_nodes> row;
-    integrator.loop.for_each_point(
-      basis, [&](auto &p, const double *q, const auto &s) {
-        const double             m = q[l.mass];
-        const SecantTargets<dim> target(p->get_location(),
-                                        q + l.macro_step,
-                                        Dt);
+    for_each_secant_target(
+      basis,
+      Dt,
+      [&](const double *,
+          const auto               &s,
+          const double              m,
+          const SecantTargets<dim> &target) {
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
           stencil[v] = global[s.nodes[v]];
         for (unsigned int v = 0; v < Basis::n_nodes; ++v)
@@ -427,7 +450,7 @@ namespace mpm
             0.5 * u[Layout::n_velocities * i + Layout::node_mass] *
             Fields::vector<dim>(u + Layout::n_velocities * i + Layout::v_new)
               .norm_square();
-        energy = Utilities::MPI::sum(energy, comm);
+        energy = Utilities::MPI::sum(energy, context.comm);
         if (energy < macro_kinetic_energy)
           {
             double            *w         = nodes.velocities.get_values();
@@ -451,7 +474,7 @@ namespace mpm
                                    const double Dt,
                                    const bool   reset)
   {
-    TimerOutput::Scope scope(timer, "macro step");
+    TimerOutput::Scope scope(context.timer, "macro step");
     const FieldLayout &l      = points.layout();
     const double      *u_all  = nodes.velocities.get_values();
     const bool         apic   = l.affine_velocity != FieldLayout::absent;
@@ -484,9 +507,9 @@ namespace mpm
                             q + l.affine_velocity);
           }
       });
-    mismatch =
-      std::max(mismatch,
-               Utilities::MPI::max(largest_here, comm) / grid.min_cell_size());
+    mismatch = std::max(mismatch,
+                        Utilities::MPI::max(largest_here, context.comm) /
+                          grid.min_cell_size());
   }
 
 

@@ -10,18 +10,44 @@ namespace mpm
 {
   namespace
   {
-    /// The velocity field of each of @p n_bodies bodies: its own with
-    /// multi-body @p contact, else the one shared field.
+    /// The contact if it acts (a body has a velocity field of its own),
+    /// else null.
     template <int dim>
-    std::vector<unsigned int>
-    fields_of_bodies(const MultiFieldContact<dim> *contact,
-                     const unsigned int            n_bodies)
+    MultiFieldContact<dim> *
+    acting(MultiFieldContact<dim> *contact)
     {
-      std::vector<unsigned int> fields(n_bodies, 0);
+      return contact != nullptr && contact->n_fields() > 1 ? contact : nullptr;
+    }
+
+    /// The fluid if it acts (is enabled), else null.
+    template <int dim>
+    VirtualFluid<dim> *
+    acting(VirtualFluid<dim> *fluid)
+    {
+      return fluid != nullptr && fluid->enabled() ? fluid : nullptr;
+    }
+
+    /// The nodal state for the points' bodies: a velocity field for each
+    /// of @p contact's fields (one shared field without it), with the
+    /// contact's data and @p fluid's forces if they act.
+    template <int dim>
+    NodalState<dim>
+    nodal_state_for(const MaterialPoints<dim>    &points,
+                    const MultiFieldContact<dim> *contact,
+                    const VirtualFluid<dim>      *fluid,
+                    const double                  mass_scaling)
+    {
+      std::vector<unsigned int> field_of_body(points.bodies().size(), 0);
       if (contact)
-        for (unsigned int b = 0; b < n_bodies; ++b)
-          fields[b] = contact->field_of_body(b);
-      return fields;
+        for (unsigned int b = 0; b < field_of_body.size(); ++b)
+          field_of_body[b] = contact->field_of_body(b);
+      return NodalState<dim>(contact ? contact->n_fields() : 1,
+                             field_of_body,
+                             points.layout().body,
+                             mass_scaling,
+                             contact ? MultiFieldContact<dim>::data_per_field
+                                     : 0,
+                             fluid != nullptr);
     }
   } // namespace
 
@@ -38,75 +64,49 @@ namespace mpm
     VirtualFluid<dim>                   *virtual_fluid,
     MultiFieldContact<dim>              *contact)
     : prm(parameters)
-    , grid(grid)
-    , points(points)
-    , velocity_region(velocity_region)
     , rigid_walls(rigid_walls)
-    , virtual_fluid(virtual_fluid != nullptr && virtual_fluid->enabled()
-                      ? virtual_fluid
-                      : nullptr)
-    , contact(contact != nullptr && contact->n_fields() > 1 ? contact : nullptr)
     , context(timer, comm)
-    , nodes(this->contact ? this->contact->n_fields() : 1,
-            fields_of_bodies(this->contact, points.bodies().size()),
-            points.layout().body,
-            prm.mass_scaling,
-            this->contact ? MultiFieldContact<dim>::data_per_field : 0,
-            this->virtual_fluid != nullptr)
-    , stresses(parameters, grid, points, context)
-    , usf_contact_rule(prm.scheme == UpdateScheme::USF && this->contact &&
-                       this->contact->deformable_bodies_touch())
+    , nodes(nodal_state_for(points,
+                            acting(contact),
+                            acting(virtual_fluid),
+                            prm.mass_scaling))
+    , loop(grid, points, prm.basis)
+    , parts{prm,
+            grid,
+            points,
+            velocity_region,
+            this->rigid_walls,
+            acting(virtual_fluid),
+            acting(contact),
+            context,
+            nodes,
+            loop,
+            work}
+    , stresses(parts)
+    , usf_contact_rule(prm.scheme == UpdateScheme::USF && parts.contact &&
+                       parts.contact->deformable_bodies_touch())
     // Nodal masses are stored with the mass scaling (see
     // GridUpdate::velocities_from_momentum), and so is the guard's
     // threshold.
     , min_nodal_mass(prm.small_mass_fraction * prm.mass_scaling *
                      points.min_particle_mass())
-    , limits(prm,
-             grid,
-             points,
-             this->rigid_walls,
-             velocity_region,
-             this->contact,
-             context)
-    , loads(points, rigid_walls, limits.wave_modulus_of_body(), context)
-    , loop(grid, points, prm.basis)
-    , to_grid(prm,
-              grid,
-              points,
-              loop,
-              nodes,
-              loads,
-              this->contact,
-              this->virtual_fluid,
-              context)
-    , grid_update(prm,
-                  grid,
-                  points.bodies(),
-                  nodes,
-                  velocity_region,
-                  this->contact,
-                  this->virtual_fluid,
-                  loads,
-                  min_nodal_mass,
-                  context)
-    , to_points(prm, points, loop, nodes, min_nodal_mass, context)
+    , limits(parts)
+    , loads(parts, limits.wave_modulus_of_body())
+    , to_grid(parts, loads)
+    , grid_update(parts, loads, min_nodal_mass)
+    , to_points(parts, min_nodal_mass)
     , substepper(*this)
   {
     setup_nodal_data();
     Assert(prm.basis != BasisType::cpgimp ||
-             points.layout().deformation_gradient != FieldLayout::absent,
+             parts.points.layout().deformation_gradient != FieldLayout::absent,
            ExcMessage("cpGIMP needs the deformation gradient"));
     Assert(!with_transfer(prm.transfer,
                           [](auto c) { return c.stores_affine_velocity; }) ||
-             points.layout().affine_velocity != FieldLayout::absent,
+             parts.points.layout().affine_velocity != FieldLayout::absent,
            ExcMessage("APIC needs the affine velocity field"));
 
     limits.check_requested_steps();
-    if (prm.least_squares && nodes.n_fields > 1)
-      throw InputError("Simulation/macro reconstruction",
-                       "least squares",
-                       "works on one velocity field; a scene with bodies in "
-                       "'Contact/bodies' or rigid bodies needs 'APIC'");
   }
 
 
@@ -114,7 +114,7 @@ namespace mpm
   void
   TimeIntegrator<dim>::setup_nodal_data()
   {
-    nodes.reinit(grid);
+    nodes.reinit(parts.grid);
     to_grid.reinit();
     grid_update.reinit();
   }
@@ -143,7 +143,7 @@ namespace mpm
 
     {
       TimerOutput::Scope scope(context.timer, "relocate");
-      n_removed += points.relocate(prm.out_of_grid);
+      n_removed += parts.points.relocate(prm.out_of_grid);
     }
     context.t += dt;
     last_dt = dt;
@@ -156,7 +156,7 @@ namespace mpm
   void
   TimeIntegrator<dim>::advance(const Basis &basis, const double dt)
   {
-    if (points.layout().point_load != FieldLayout::absent)
+    if (parts.points.layout().point_load != FieldLayout::absent)
       loads.make_point_loads(dt);
     // See USF with cpGIMP.
     const double work_before = loads.step_work_so_far();
@@ -252,9 +252,9 @@ namespace mpm
       scatter_masses_then_forces(basis);
       double       *u = nodes.velocities.get_values();
       const double *g = nodes.sums.get_values();
-      for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
+      for (unsigned int i = 0; i < parts.grid.n_locally_owned_nodes(); ++i)
         {
-          const Tensor<1, dim> w_i = w(grid.owned_node_coordinates(i));
+          const Tensor<1, dim> w_i = w(parts.grid.owned_node_coordinates(i));
           for (unsigned int f = 0; f < nodes.n_fields; ++f)
             for (unsigned int d = 0; d < dim; ++d)
               {
@@ -266,7 +266,7 @@ namespace mpm
               }
         }
       nodes.velocities.update_ghost_values();
-      const FieldLayout &l = points.layout();
+      const FieldLayout &l = parts.points.layout();
       loop.for_each_point(basis, [&](auto &, const double *q, const auto &s) {
         const Tensor<2, dim> L =
           velocity_gradient<dim>(s,
@@ -304,14 +304,11 @@ namespace mpm
   void
   TimeIntegrator<dim>::save_state(RunState &state) const
   {
-    // Sums over the ranks: a restart on another number of ranks keeps them
-    // on its first.
-    loads.save_state(state);
+    work.save_state(state, context.comm);
     state.values["time"]           = context.t;
     state.values["last_dt"]        = last_dt;
     state.values["steps"]          = context.n_steps;
     state.values["removed_points"] = n_removed;
-    stresses.save_state(state);
     if (prm.macro_time_step > 0)
       substepper.save_state(state);
   }
@@ -325,8 +322,7 @@ namespace mpm
     last_dt         = state.get("last_dt");
     context.n_steps = state.get("steps");
     n_removed       = state.get("removed_points");
-    loads.restore_state(state);
-    stresses.restore_state(state);
+    work.restore_state(state, context.comm);
     if (prm.macro_time_step > 0)
       substepper.restore_state(state);
   }

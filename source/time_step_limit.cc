@@ -10,21 +10,14 @@
 namespace mpm
 {
   template <int dim>
-  TimeStepLimit<dim>::TimeStepLimit(
-    const IntegratorParameters<dim>     &parameters,
-    const BackgroundGrid<dim>           &grid,
-    const MaterialPoints<dim>           &points,
-    const std::vector<RigidWall<dim> *> &rigid_walls,
-    const VelocityRegion<dim>           &velocity_region,
-    MultiFieldContact<dim>              *contact,
-    StepContext                         &context)
-    : prm(parameters)
-    , grid(grid)
-    , points(points)
-    , rigid_walls(rigid_walls)
-    , velocity_region(velocity_region)
-    , contact(contact)
-    , context(context)
+  TimeStepLimit<dim>::TimeStepLimit(const StepParts<dim> &parts)
+    : prm(parts.parameters)
+    , grid(parts.grid)
+    , points(parts.points)
+    , rigid_walls(parts.rigid_walls)
+    , velocity_region(parts.velocity_region)
+    , contact(parts.contact)
+    , context(parts.context)
     , density(deformable_densities(points.bodies()))
   {
     for (const auto &body : points.bodies())

@@ -525,4 +525,17 @@ namespace mpm
   M(dim, mpm::QuadraticBSplineBasis<dim>) \
   M(dim, mpm::CubicBSplineBasis<dim>)
 
+/**
+ * Instantiate the class template @p Class for dimensions 1, 2 and 3, and
+ * expand @p M(dim, Basis) for every basis with each: a stage whose loops
+ * are member templates on the basis.
+ */
+#define MPM_INSTANTIATE_WITH_EACH_BASIS(Class, M) \
+  template class Class<1>;                        \
+  MPM_FOR_EACH_BASIS(M, 1)                        \
+  template class Class<2>;                        \
+  MPM_FOR_EACH_BASIS(M, 2)                        \
+  template class Class<3>;                        \
+  MPM_FOR_EACH_BASIS(M, 3)
+
 #endif

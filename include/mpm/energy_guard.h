@@ -34,7 +34,7 @@ namespace mpm
    * Plasticity can hide energy the numerics made: what it dissipates
    * offsets a gain. The energy residual ('Simulation/energy residual')
    * takes the work the stresses absorbed, summed step by step
-   * (StressUpdate::absorbed_work), in place of the change of strain
+   * (WorkAccount::absorbed), in place of the change of strain
    * energy:
    *
    *   R(t) = E(t) - Psi(t) + Psi(0) + W_sigma(t) - E(0) - W(t),
@@ -64,7 +64,7 @@ namespace mpm
      * external work @p work (and its absolute sum @p absolute_work) done
      * since the start; collective. With the energy residual, also the
      * balance in which the work the stresses absorbed, @p stress_work
-     * (StressUpdate::absorbed_work()), replaces the change of strain
+     * (WorkAccount::absorbed), replaces the change of strain
      * energy. Throws RunError with a diagnosis. Returns E_in(t) and the
      * energy residual (0 without it), also when the guard is off.
      */

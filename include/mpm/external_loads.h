@@ -6,10 +6,10 @@
 #include <deal.II/base/timer.h>
 
 #include <mpm/boundary_conditions/rigid_wall.h>
-#include <mpm/checkpoint.h>
 #include <mpm/material_points.h>
 #include <mpm/parameters.h>
-#include <mpm/step_context.h>
+#include <mpm/step_parts.h>
+#include <mpm/work_account.h>
 
 #include <array>
 #include <sstream>
@@ -37,10 +37,8 @@ namespace mpm
   class ExternalLoads
   {
   public:
-    ExternalLoads(MaterialPoints<dim>                 &points,
-                  const std::vector<RigidWall<dim> *> &rigid_walls,
-                  const std::vector<double>           &wave_modulus_of_body,
-                  StepContext                         &context);
+    ExternalLoads(const StepParts<dim>      &parts,
+                  const std::vector<double> &wave_modulus_of_body);
 
     /// Does a body force act on any body?
     bool
@@ -112,23 +110,6 @@ namespace mpm
     void
     keep_points_in_front_of_rigid_walls(const double time);
 
-    /**
-     * The work done on the bodies since the start by everything outside
-     * them but gravity (loads, body forces, rigid walls and bodies,
-     * velocity regions, the virtual fluid), and the sum of its absolute
-     * step increments; summed over the ranks (collective). The energy
-     * guard's external side of the balance.
-     */
-    std::array<double, 2>
-    totals() const;
-
-    /// Put the totals into @p state, or take them back from it (the sums
-    /// over the ranks go to the first).
-    void
-    save_state(RunState &state) const;
-    void
-    restore_state(const RunState &state);
-
   private:
     /// Add @p weight times the point loads' power at the points' current
     /// velocities to the step's external work (see there).
@@ -144,9 +125,14 @@ namespace mpm
     /// body force (null: none).
     std::vector<FunctionParser<dim> *> pressures, tractions, body_forces;
     bool                               with_body_forces = false;
-    /// This rank's share of the external work: in this step, and since the
-    /// start with its absolute sum; body forces' power in the last scatter.
-    double step_work = 0, work = 0, absolute_work = 0, body_force_power = 0;
+    /// Where each step's external work goes (WorkAccount::external and
+    /// its absolute sum): the work done on the bodies by everything
+    /// outside them but gravity (loads, body forces, rigid walls and
+    /// bodies, velocity regions, the virtual fluid).
+    WorkAccount &account;
+    /// This rank's share of the step's external work so far, and the body
+    /// forces' power in the last scatter.
+    double step_work = 0, body_force_power = 0;
   };
 
 

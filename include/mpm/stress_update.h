@@ -2,10 +2,10 @@
 #define mpm_stress_update_h
 
 #include <mpm/background_grid.h>
-#include <mpm/checkpoint.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
-#include <mpm/step_context.h>
+#include <mpm/step_parts.h>
+#include <mpm/work_account.h>
 
 #include <vector>
 
@@ -25,29 +25,11 @@ namespace mpm
   class StressUpdate
   {
   public:
-    StressUpdate(const IntegratorParameters<dim> &parameters,
-                 const BackgroundGrid<dim>       &grid,
-                 MaterialPoints<dim>             &points,
-                 const StepContext               &context);
+    StressUpdate(const StepParts<dim> &parts);
 
     /// Update the stresses of all deformable bodies over a step of @p dt.
     void
     update(const double dt);
-
-    /**
-     * The work the deformable bodies' stresses absorbed since the start
-     * (the stress power, summed over the steps; 'Simulation/energy
-     * residual', else 0), summed over the ranks (collective).
-     */
-    double
-    absorbed_work() const;
-
-    /// Put the absorbed work into @p state, or take it back (restart: the
-    /// sum over the ranks goes to the first).
-    void
-    save_state(RunState &state) const;
-    void
-    restore_state(const RunState &state);
 
   private:
     /// F-bar: replace each point's volume change over the step by that of
@@ -66,8 +48,8 @@ namespace mpm
     const StepContext         &context;
     /// Each body's reference density (BodyParameters::deformable_density).
     std::vector<double> density_of_body;
-    /// This rank's share of absorbed_work().
-    double absorbed = 0;
+    /// Where the absorbed work goes (WorkAccount::absorbed).
+    WorkAccount &account;
   };
 } // namespace mpm
 

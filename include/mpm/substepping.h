@@ -5,6 +5,7 @@
 #include <deal.II/base/timer.h>
 
 #include <mpm/grid/nodal_layout.h>
+#include <mpm/step_context.h>
 
 namespace mpm
 {
@@ -133,14 +134,28 @@ namespace mpm
     void
     gather_velocity(const Basis &basis, const double Dt, const bool reset);
 
+    /// Call @p f(p, m) for each point p of this rank, with m its 'macro
+    /// step' field (x^n or x^(n+1), then the substeps' deformation
+    /// increment), timed as the macro step.
+    template <typename Function>
+    void
+    for_each_macro_field(const Function &f);
+    /// Call @p f(q, s, m, target) for each point with its data, stencil,
+    /// mass and secant targets over the macro step @p Dt (the points at
+    /// x^n, as end() leaves them).
+    template <typename Basis, typename Function>
+    void
+    for_each_secant_target(const Basis    &basis,
+                           const double    Dt,
+                           const Function &f);
+
     TimeIntegrator<dim> &integrator;
     /// The integrator's parts the macro step reads most, named as there.
     const IntegratorParameters<dim> &prm;
     const BackgroundGrid<dim>       &grid;
     MaterialPoints<dim>             &points;
     NodalState<dim>                 &nodes;
-    TimerOutput                     &timer;
-    const MPI_Comm                   comm;
+    StepContext                     &context;
 
     /// Macro steps taken, the largest mismatch (see largest_mismatch()),
     /// and the grid's kinetic energy at the last macro step (kinetic

@@ -20,13 +20,14 @@
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
 #include <mpm/point_fields.h>
-#include <mpm/step_context.h>
+#include <mpm/step_parts.h>
 #include <mpm/stress_update.h>
 #include <mpm/substepping.h>
 #include <mpm/time_step_limit.h>
 #include <mpm/transfer/grid_to_particle.h>
 #include <mpm/transfer/particle_to_grid.h>
 #include <mpm/transfer/point_loop.h>
+#include <mpm/work_account.h>
 
 #include <array>
 #include <functional>
@@ -168,11 +169,12 @@ namespace mpm
     void
     restore_state(const RunState &state);
 
-    /// The loads and the account of the external work.
-    const ExternalLoads<dim> &
-    external_loads() const
+    /// The energy balance's running sums: the external and the absorbed
+    /// work.
+    const WorkAccount &
+    work_account() const
     {
-      return loads;
+      return work;
     }
 
     /**
@@ -189,13 +191,6 @@ namespace mpm
     internal_work_and_stress_power(
       const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
         &w);
-
-    /// The stress stage (the work the stresses absorbed).
-    const StressUpdate<dim> &
-    stress_update() const
-    {
-      return stresses;
-    }
 
   private:
     friend class Substepper<dim>;
@@ -219,20 +214,20 @@ namespace mpm
     scatter_masses_then_forces(const Basis &basis);
 
     const IntegratorParameters<dim> prm;
-    const BackgroundGrid<dim>      &grid;
-    MaterialPoints<dim>            &points;
-    VelocityRegion<dim>            &velocity_region;
     /// The walls acting on the points.
     const std::vector<RigidWall<dim> *> rigid_walls;
-    /// Null, or a fluid acting on the bodies' surface (only if enabled).
-    VirtualFluid<dim> *virtual_fluid;
-    /// Null, or the multi-body contact (only if a body has its own field).
-    MultiFieldContact<dim> *contact;
     /// The clock, the step's first diagnosis, the timer, the communicator:
     /// what every stage below reads.
     StepContext context;
     /// The nodal arrays and the velocity fields they hold per node.
     NodalState<dim> nodes;
+    /// The scene's basis and the loop over the points with it.
+    PointLoop<dim> loop;
+    /// The energy balance's running sums.
+    WorkAccount work;
+    /// The scene's parts with the members above, as every stage below sees
+    /// them.
+    const StepParts<dim> parts;
     /// F-bar, the materials' update and the stress power.
     StressUpdate<dim> stresses;
     /// USF with deformable bodies that touch (see
@@ -248,8 +243,6 @@ namespace mpm
     TimeStepLimit<dim> limits;
     /// The loads and the external work.
     ExternalLoads<dim> loads;
-    /// The scene's basis and the loop over the points with it.
-    PointLoop<dim> loop;
     /// The stages: P2G, the nodal velocities and their constraints, G2P.
     ParticleToGrid<dim> to_grid;
     GridUpdate<dim>     grid_update;

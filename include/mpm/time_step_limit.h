@@ -10,7 +10,7 @@
 #include <mpm/contact/multi_field.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
-#include <mpm/step_context.h>
+#include <mpm/step_parts.h>
 
 #include <limits>
 #include <string>
@@ -34,13 +34,7 @@ namespace mpm
   class TimeStepLimit
   {
   public:
-    TimeStepLimit(const IntegratorParameters<dim>     &parameters,
-                  const BackgroundGrid<dim>           &grid,
-                  const MaterialPoints<dim>           &points,
-                  const std::vector<RigidWall<dim> *> &rigid_walls,
-                  const VelocityRegion<dim>           &velocity_region,
-                  MultiFieldContact<dim>              *contact,
-                  StepContext                         &context);
+    TimeStepLimit(const StepParts<dim> &parts);
 
     /// CFL number times h / max(c_p + |v_p|), or the viscous limit if
     /// smaller. Also checks that every point is sound; throws RunError (on

@@ -106,29 +106,18 @@ namespace mpm
           if (faces & (1u << face))
             apply_coulomb_contact(
               u + width * Layout::slot_of(i, f, n_fields) + slot, face, mu);
-    if (dt > 0 && !absorbing_nodes.empty())
-      apply_dashpots(u, n_fields, slot, dt);
-  }
-
-
-  template <int dim>
-  void
-  GridFaces<dim>::apply_dashpots(double            *u,
-                                 const unsigned int n_fields,
-                                 const unsigned int slot,
-                                 const double       dt) const
-  {
-    // The dashpot force -A Z v (Z = rho c_p on the normal, rho c_s on the
-    // tangential components) taken implicitly in the force update,
-    // m (v - v*) = -dt A Z v, so v = v* / (1 + dt A Z / m): stable for any
-    // nodal mass, and a light node is simply held.
-    using Layout = NodalLayout<dim>;
+    if (!(dt > 0))
+      return;
+    // The absorbing faces' dashpots act at the force update: the force
+    // -A Z v (Z = rho c_p on the normal, rho c_s on the tangential
+    // components) taken implicitly, m (v - v*) = -dt A Z v, so
+    // v = v* / (1 + dt A Z / m): stable for any nodal mass, and a light
+    // node is simply held.
     for (const AbsorbingNode &a : absorbing_nodes)
       for (unsigned int f = 0; f < n_fields; ++f)
         {
-          double *node =
-            u + Layout::n_velocities * Layout::slot_of(a.node, f, n_fields);
-          const double m = node[Layout::node_mass];
+          double      *node = u + width * Layout::slot_of(a.node, f, n_fields);
+          const double m    = node[Layout::node_mass];
           if (!(m > 0))
             continue;
           const double normal = 1. / (1. + dt * a.area * normal_impedance / m);

@@ -111,7 +111,8 @@ namespace mpm
   RigidWall<dim>::RigidWall(const RigidWallParameters<dim> &parameters,
                             const double                    cell_size,
                             const unsigned int              slip_slot)
-    : prm(parameters)
+    : MeteredReporter<dim>("wall" + std::to_string(parameters.index) + "_force")
+    , prm(parameters)
     , h(cell_size)
     , slip_slot(slip_slot)
   {
@@ -182,7 +183,7 @@ namespace mpm
           load[d] += f[d];
         reaction -= dt * f;
       }
-    meter.add(reaction);
+    this->add_impulse(reaction);
   }
 
 
@@ -214,23 +215,6 @@ namespace mpm
         work += 0.5 * q[l.mass] * (v_new.norm_square() - v.norm_square());
       }
     return overlap - depth;
-  }
-
-
-  template <int dim>
-  std::vector<std::string>
-  RigidWall<dim>::columns() const
-  {
-    return ReactionMeter<dim>::columns("wall" + std::to_string(prm.index) +
-                                       "_force");
-  }
-
-
-  template <int dim>
-  std::vector<double>
-  RigidWall<dim>::mean_force_since_last_call(const double time, MPI_Comm comm)
-  {
-    return meter.mean_since_last_call(time, comm);
   }
 
 

@@ -99,7 +99,8 @@ namespace mpm
   VelocityRegion<dim>::VelocityRegion(
     const VelocityRegionParameters<dim> &parameters,
     const BackgroundGrid<dim>           &grid)
-    : prm(parameters)
+    : MeteredReporter<dim>(parameters.enabled ? "region_force" : "")
+    , prm(parameters)
   {
     find_nodes(grid);
     if (prm.enabled &&
@@ -148,28 +149,8 @@ namespace mpm
               node[slot + d] = prm.velocity[d];
             }
       }
-    meter.add(impulse);
+    this->add_impulse(impulse);
     return work;
-  }
-
-
-  template <int dim>
-  std::vector<std::string>
-  VelocityRegion<dim>::columns() const
-  {
-    return prm.enabled ? ReactionMeter<dim>::columns("region_force")
-                       : std::vector<std::string>();
-  }
-
-
-  template <int dim>
-  std::vector<double>
-  VelocityRegion<dim>::mean_force_since_last_call(const double time,
-                                                  MPI_Comm     comm)
-  {
-    if (!prm.enabled)
-      return {};
-    return meter.mean_since_last_call(time, comm);
   }
 
 

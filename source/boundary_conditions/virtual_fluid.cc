@@ -74,7 +74,8 @@ namespace mpm
   VirtualFluid<dim>::VirtualFluid(const VirtualFluidParameters<dim> &parameters,
                                   const double gravity_magnitude,
                                   const double cell_size)
-    : prm(parameters)
+    : MeteredReporter<dim>(parameters.enabled ? "fluid_force" : "")
+    , prm(parameters)
     , g(gravity_magnitude)
   {
     if (prm.enabled && !Parse::is_zero({prm.pressure}))
@@ -114,26 +115,6 @@ namespace mpm
         gradient += extra->gradient(x);
       }
     return p;
-  }
-
-
-  template <int dim>
-  std::vector<std::string>
-  VirtualFluid<dim>::columns() const
-  {
-    return prm.enabled ? ReactionMeter<dim>::columns("fluid_force")
-                       : std::vector<std::string>();
-  }
-
-
-  template <int dim>
-  std::vector<double>
-  VirtualFluid<dim>::mean_force_since_last_call(const double time,
-                                                MPI_Comm     comm)
-  {
-    if (!prm.enabled)
-      return {};
-    return meter.mean_since_last_call(time, comm);
   }
 
 

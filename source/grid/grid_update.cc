@@ -9,26 +9,19 @@
 namespace mpm
 {
   template <int dim>
-  GridUpdate<dim>::GridUpdate(const IntegratorParameters<dim> &parameters,
-                              const BackgroundGrid<dim>       &grid,
-                              const std::vector<BodyParameters<dim>> &bodies,
-                              NodalState<dim>                        &nodes,
-                              VelocityRegion<dim>    &velocity_region,
-                              MultiFieldContact<dim> *contact,
-                              VirtualFluid<dim>      *virtual_fluid,
-                              ExternalLoads<dim>     &loads,
-                              const double            light_mass,
-                              const StepContext      &context)
-    : prm(parameters)
-    , grid(grid)
-    , nodes(nodes)
-    , faces(grid, bodies)
-    , velocity_region(velocity_region)
-    , contact(contact)
-    , virtual_fluid(virtual_fluid)
+  GridUpdate<dim>::GridUpdate(const StepParts<dim> &parts,
+                              ExternalLoads<dim>   &loads,
+                              const double          light_mass)
+    : prm(parts.parameters)
+    , grid(parts.grid)
+    , nodes(parts.nodes)
+    , faces(parts.grid, parts.points.bodies())
+    , velocity_region(parts.velocity_region)
+    , contact(parts.contact)
+    , virtual_fluid(parts.virtual_fluid)
     , loads(loads)
     , light_mass(light_mass)
-    , context(context)
+    , context(parts.context)
   {
   }
 

@@ -131,18 +131,8 @@ namespace mpm
       const double mu, K;
       double       eta, xi, eta_bar, xi_c, p_max;
     };
-
-    template <int dim>
-    using DruckerPrager = Model<dim, DruckerPragerFlow>;
   } // namespace LogStrain
 
 
-  namespace LogStrainModels
-  {
-    MaterialEntry
-    drucker_prager()
-    {
-      return material_entry<LogStrain::DruckerPrager>("Drucker-Prager");
-    }
-  } // namespace LogStrainModels
+  MPM_LOG_STRAIN_ENTRY(drucker_prager, DruckerPragerFlow, "Drucker-Prager")
 } // namespace mpm

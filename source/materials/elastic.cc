@@ -55,40 +55,16 @@ namespace mpm
      * rotates the stress and creates none: the update is objective.
      */
     template <int dim>
-    class LinearElastic : public PointwiseMaterial<dim, LinearElastic<dim>>
+    class LinearElastic
+      : public IsotropicPointwiseMaterial<dim, LinearElastic<dim>>
     {
     public:
-      LinearElastic(ParameterHandler &prm, const std::string &path, double)
-        : c(prm, path)
-      {
-      }
-
-      std::string
-      stiffness_parameters() const override
-      {
-        return c.given;
-      }
-
-      static void
-      declare_parameters(ParameterHandler &prm)
-      {
-        ElasticConstants::declare(prm);
-      }
+      using IsotropicPointwiseMaterial<dim, LinearElastic<dim>>::
+        IsotropicPointwiseMaterial;
 
       void
       request_fields(FieldRequests &) const override
       {
-      }
-
-      double
-      p_wave_modulus() const override
-      {
-        return c.lambda + 2. * c.mu;
-      }
-      double
-      shear_modulus() const override
-      {
-        return c.mu;
       }
 
       /**
@@ -148,10 +124,12 @@ namespace mpm
           Fields::symmetric<dim>(p + layout.stress);
         if constexpr (dim > 1)
           sigma = rotate(sigma, hughes_winget_rotation(L, dt));
-        sigma += dt * (c.lambda * trace(D) * unit_symmetric_tensor<dim>() +
-                       2. * c.mu * D);
+        sigma += dt * (this->constants.lambda * trace(D) *
+                         unit_symmetric_tensor<dim>() +
+                       2. * this->constants.mu * D);
         const double pressure_change =
-          (dim * c.lambda + 2. * c.mu) * volumetric_correction(D, dt);
+          (dim * this->constants.lambda + 2. * this->constants.mu) *
+          volumetric_correction(D, dt);
         for (unsigned int d = 0; d < dim; ++d)
           sigma[d][d] += pressure_change;
         Fields::store(sigma, p + layout.stress);
@@ -166,8 +144,10 @@ namespace mpm
           Fields::symmetric<dim>(p + layout.stress);
         const double tr = trace(s);
         const double w =
-          (s * s - c.lambda / (dim * c.lambda + 2. * c.mu) * tr * tr) /
-          (4. * c.mu);
+          (s * s - this->constants.lambda /
+                     (dim * this->constants.lambda + 2. * this->constants.mu) *
+                     tr * tr) /
+          (4. * this->constants.mu);
         return w * p[layout.volume];
       }
 
@@ -185,14 +165,15 @@ namespace mpm
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
             full[i][j] = s[i][j];
-        const double ratio = c.lambda / (dim * c.lambda + 2. * c.mu);
+        const double ratio =
+          this->constants.lambda /
+          (dim * this->constants.lambda + 2. * this->constants.mu);
         for (unsigned int d = dim; d < 3; ++d)
           full[d][d] = ratio * trace(s);
         return full;
       }
 
     private:
-      const ElasticConstants c;
     };
 
 
@@ -203,19 +184,11 @@ namespace mpm
      * per unit reference volume.
      */
     template <int dim>
-    class NeoHookean : public PointwiseMaterial<dim, NeoHookean<dim>>
+    class NeoHookean : public IsotropicPointwiseMaterial<dim, NeoHookean<dim>>
     {
     public:
-      NeoHookean(ParameterHandler &prm, const std::string &path, double)
-        : c(prm, path)
-      {
-      }
-
-      static void
-      declare_parameters(ParameterHandler &prm)
-      {
-        ElasticConstants::declare(prm);
-      }
+      using IsotropicPointwiseMaterial<dim, NeoHookean<dim>>::
+        IsotropicPointwiseMaterial;
 
       void
       request_fields(FieldRequests &requests) const override
@@ -229,17 +202,6 @@ namespace mpm
       accepts_initial_stress() const override
       {
         return false;
-      }
-
-      double
-      p_wave_modulus() const override
-      {
-        return c.lambda + 2. * c.mu;
-      }
-      double
-      shear_modulus() const override
-      {
-        return c.mu;
       }
 
       bool
@@ -261,8 +223,9 @@ namespace mpm
           Fields::tensor<dim>(p + layout.deformation_gradient);
         const double J   = determinant(F);
         const double lnJ = std::log(J);
-        const double psi = 0.5 * c.mu * (scalar_product(F, F) - dim) -
-                           c.mu * lnJ + 0.5 * c.lambda * lnJ * lnJ;
+        const double psi =
+          0.5 * this->constants.mu * (scalar_product(F, F) - dim) -
+          this->constants.mu * lnJ + 0.5 * this->constants.lambda * lnJ * lnJ;
         return psi * p[layout.volume] / J;
       }
 
@@ -279,7 +242,7 @@ namespace mpm
         const double J =
           determinant(Fields::tensor<dim>(p + layout.deformation_gradient));
         for (unsigned int d = dim; d < 3; ++d)
-          sigma[d][d] = c.lambda * std::log(J) / J;
+          sigma[d][d] = this->constants.lambda * std::log(J) / J;
         return sigma;
       }
 
@@ -293,11 +256,10 @@ namespace mpm
         const double J = determinant(F);
         // J <= 0 is caught by the integrator's kinematic update before this.
         const SymmetricTensor<2, dim> b = symmetrize(F * transpose(F));
-        return (c.mu / J) * (b - unit_symmetric_tensor<dim>()) +
-               (c.lambda * std::log(J) / J) * unit_symmetric_tensor<dim>();
+        return (this->constants.mu / J) * (b - unit_symmetric_tensor<dim>()) +
+               (this->constants.lambda * std::log(J) / J) *
+                 unit_symmetric_tensor<dim>();
       }
-
-      const ElasticConstants c;
     };
   } // namespace
 

@@ -94,18 +94,8 @@ namespace mpm
         return -1;
       }
     };
-
-    template <int dim>
-    using Hencky = Model<dim, NoFlow>;
   } // namespace LogStrain
 
 
-  namespace LogStrainModels
-  {
-    MaterialEntry
-    hencky_elastic()
-    {
-      return material_entry<LogStrain::Hencky>("Hencky elastic");
-    }
-  } // namespace LogStrainModels
+  MPM_LOG_STRAIN_ENTRY(hencky_elastic, NoFlow, "Hencky elastic")
 } // namespace mpm

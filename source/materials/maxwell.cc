@@ -153,18 +153,10 @@ namespace mpm
       const double glen_factor, glen_power;
       const double mu;
     };
-
-    template <int dim>
-    using Maxwell = Model<dim, MaxwellFlow>;
   } // namespace LogStrain
 
 
-  namespace LogStrainModels
-  {
-    MaterialEntry
-    maxwell_viscoelastic()
-    {
-      return material_entry<LogStrain::Maxwell>("Maxwell viscoelastic");
-    }
-  } // namespace LogStrainModels
+  MPM_LOG_STRAIN_ENTRY(maxwell_viscoelastic,
+                       MaxwellFlow,
+                       "Maxwell viscoelastic")
 } // namespace mpm

@@ -415,18 +415,8 @@ namespace mpm
       bool                      softening;
       double                    residual_strain = 1;
     };
-
-    template <int dim>
-    using MohrCoulomb = Model<dim, MohrCoulombFlow>;
   } // namespace LogStrain
 
 
-  namespace LogStrainModels
-  {
-    MaterialEntry
-    mohr_coulomb()
-    {
-      return material_entry<LogStrain::MohrCoulomb>("Mohr-Coulomb");
-    }
-  } // namespace LogStrainModels
+  MPM_LOG_STRAIN_ENTRY(mohr_coulomb, MohrCoulombFlow, "Mohr-Coulomb")
 } // namespace mpm

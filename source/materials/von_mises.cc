@@ -74,18 +74,8 @@ namespace mpm
 
       const double yield_stress, hardening, mu;
     };
-
-    template <int dim>
-    using VonMises = Model<dim, VonMisesFlow>;
   } // namespace LogStrain
 
 
-  namespace LogStrainModels
-  {
-    MaterialEntry
-    von_mises()
-    {
-      return material_entry<LogStrain::VonMises>("von Mises");
-    }
-  } // namespace LogStrainModels
+  MPM_LOG_STRAIN_ENTRY(von_mises, VonMisesFlow, "von Mises")
 } // namespace mpm

@@ -12,19 +12,14 @@
 namespace mpm
 {
   template <int dim>
-  GridToParticle<dim>::GridToParticle(
-    const IntegratorParameters<dim> &parameters,
-    MaterialPoints<dim>             &points,
-    const PointLoop<dim>            &loop,
-    const NodalState<dim>           &nodes,
-    const double                     guard_mass,
-    StepContext                     &context)
-    : prm(parameters)
-    , points(points)
-    , loop(loop)
-    , nodes(nodes)
+  GridToParticle<dim>::GridToParticle(const StepParts<dim> &parts,
+                                      const double          guard_mass)
+    : prm(parts.parameters)
+    , points(parts.points)
+    , loop(parts.loop)
+    , nodes(parts.nodes)
     , guard_mass(guard_mass)
-    , context(context)
+    , context(parts.context)
   {
   }
 
@@ -160,12 +155,6 @@ namespace mpm
   template void GridToParticle<dim>::update_kinematics(const Basis &, \
                                                        const double,  \
                                                        const unsigned int);
-#define MPM_INSTANTIATE(dim)          \
-  template class GridToParticle<dim>; \
-  MPM_FOR_EACH_BASIS(MPM_INSTANTIATE_BASIS, dim)
-  MPM_INSTANTIATE(1)
-  MPM_INSTANTIATE(2)
-  MPM_INSTANTIATE(3)
-#undef MPM_INSTANTIATE
+  MPM_INSTANTIATE_WITH_EACH_BASIS(GridToParticle, MPM_INSTANTIATE_BASIS)
 #undef MPM_INSTANTIATE_BASIS
 } // namespace mpm

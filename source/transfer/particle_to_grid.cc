@@ -60,25 +60,17 @@ namespace mpm
 
 
   template <int dim>
-  ParticleToGrid<dim>::ParticleToGrid(
-    const IntegratorParameters<dim> &parameters,
-    const BackgroundGrid<dim>       &grid,
-    MaterialPoints<dim>             &points,
-    const PointLoop<dim>            &loop,
-    NodalState<dim>                 &nodes,
-    ExternalLoads<dim>              &loads,
-    MultiFieldContact<dim>          *contact,
-    VirtualFluid<dim>               *virtual_fluid,
-    const StepContext               &context)
-    : prm(parameters)
-    , grid(grid)
-    , points(points)
-    , loop(loop)
-    , nodes(nodes)
+  ParticleToGrid<dim>::ParticleToGrid(const StepParts<dim> &parts,
+                                      ExternalLoads<dim>   &loads)
+    : prm(parts.parameters)
+    , grid(parts.grid)
+    , points(parts.points)
+    , loop(parts.loop)
+    , nodes(parts.nodes)
     , loads(loads)
-    , contact(contact)
-    , virtual_fluid(virtual_fluid)
-    , context(context)
+    , contact(parts.contact)
+    , virtual_fluid(parts.virtual_fluid)
+    , context(parts.context)
     , density_of_body(deformable_densities(points.bodies()))
   {
   }
@@ -403,12 +395,6 @@ namespace mpm
                                              const bool,    \
                                              const bool,    \
                                              const double);
-#define MPM_INSTANTIATE(dim)          \
-  template class ParticleToGrid<dim>; \
-  MPM_FOR_EACH_BASIS(MPM_INSTANTIATE_BASIS, dim)
-  MPM_INSTANTIATE(1)
-  MPM_INSTANTIATE(2)
-  MPM_INSTANTIATE(3)
-#undef MPM_INSTANTIATE
+  MPM_INSTANTIATE_WITH_EACH_BASIS(ParticleToGrid, MPM_INSTANTIATE_BASIS)
 #undef MPM_INSTANTIATE_BASIS
 } // namespace mpm

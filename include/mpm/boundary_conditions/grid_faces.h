@@ -59,13 +59,6 @@ namespace mpm
     apply_coulomb_contact(double *v, const unsigned int face, const double mu);
 
   private:
-    /// The absorbing faces' dashpots over the step @p dt.
-    void
-    apply_dashpots(double            *u,
-                   const unsigned int n_fields,
-                   const unsigned int slot,
-                   const double       dt) const;
-
     /// A node on an absorbing face: the face (x min, x max, y min, ...)
     /// and the share of its area the node's dashpots act on.
     struct AbsorbingNode

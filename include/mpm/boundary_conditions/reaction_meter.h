@@ -78,6 +78,50 @@ namespace mpm
     Tensor<1, dim> sum;
     double         last_time = 0;
   };
+
+
+  /**
+   * A condition with one ReactionMeter (the velocity region, each rigid
+   * wall, the virtual fluid): its columns "<prefix>_x", ... and their
+   * values, written once here for all of them. An empty prefix: the
+   * condition does not act in this scene and reports nothing.
+   */
+  template <int dim>
+  class MeteredReporter : public ForceReporter
+  {
+  public:
+    explicit MeteredReporter(const std::string &column_prefix)
+      : prefix(column_prefix)
+    {
+    }
+
+    std::vector<std::string>
+    columns() const override
+    {
+      return prefix.empty() ? std::vector<std::string>()
+                            : ReactionMeter<dim>::columns(prefix);
+    }
+
+    std::vector<double>
+    mean_force_since_last_call(const double time, MPI_Comm comm) override
+    {
+      if (prefix.empty())
+        return {};
+      return meter.mean_since_last_call(time, comm);
+    }
+
+    /// Count @p impulse, given to the material by the condition (this
+    /// rank's share), in its force.
+    void
+    add_impulse(const Tensor<1, dim> &impulse)
+    {
+      meter.add(impulse);
+    }
+
+  private:
+    const std::string  prefix;
+    ReactionMeter<dim> meter;
+  };
 } // namespace mpm
 
 #endif

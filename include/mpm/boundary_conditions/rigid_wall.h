@@ -64,7 +64,7 @@ namespace mpm
    * l/2 into the wall.
    */
   template <int dim>
-  class RigidWall : public ForceReporter
+  class RigidWall : public MeteredReporter<dim>
   {
   public:
     /// @p slip_slot: which of the points' stick springs this wall uses
@@ -114,13 +114,6 @@ namespace mpm
       return prm.point + t * prm.velocity;
     }
 
-    /// Counts @p impulse of the material on the wall in its force.
-    void
-    add_impulse(const Tensor<1, dim> &impulse)
-    {
-      meter.add(impulse);
-    }
-
     /// The wall's speed: the time step must let no point cross it in a
     /// step (TimeIntegrator::stable_time_step).
     double
@@ -129,20 +122,10 @@ namespace mpm
       return prm.velocity.norm();
     }
 
-    /// Statistics columns: "wall<N>_force_x", ...
-    std::vector<std::string>
-    columns() const override;
-
-    /// The mean force of the material on the wall since the last call,
-    /// summed over ranks (collective), and restart the averaging.
-    std::vector<double>
-    mean_force_since_last_call(const double time, MPI_Comm comm) override;
-
   private:
     const RigidWallParameters<dim> prm;
     const double                   h;
     const unsigned int             slip_slot;
-    ReactionMeter<dim>             meter;
   };
 } // namespace mpm
 

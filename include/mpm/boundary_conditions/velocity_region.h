@@ -44,7 +44,7 @@ namespace mpm
    * interval (explicit MPM's nodal reaction is noisy from step to step).
    */
   template <int dim>
-  class VelocityRegion : public ForceReporter
+  class VelocityRegion : public MeteredReporter<dim>
   {
   public:
     VelocityRegion(const VelocityRegionParameters<dim> &parameters,
@@ -84,19 +84,9 @@ namespace mpm
             const unsigned int slot,
             const double       dt);
 
-    /// Statistics columns: "region_force_x", ...
-    std::vector<std::string>
-    columns() const override;
-
-    /// The mean force on the material since the last call, summed over
-    /// ranks (collective), and restart the averaging.
-    std::vector<double>
-    mean_force_since_last_call(const double time, MPI_Comm comm) override;
-
   private:
     const VelocityRegionParameters<dim> prm;
     std::vector<unsigned int>           nodes;
-    ReactionMeter<dim>                  meter;
   };
 } // namespace mpm
 

@@ -47,7 +47,7 @@ namespace mpm
    * columns fluid_force_x, ...): its vertical part is the buoyancy.
    */
   template <int dim>
-  class VirtualFluid : public ForceReporter
+  class VirtualFluid : public MeteredReporter<dim>
   {
   public:
     VirtualFluid(const VirtualFluidParameters<dim> &parameters,
@@ -73,25 +73,10 @@ namespace mpm
     double
     pressure(const Point<dim> &x, Tensor<1, dim> &gradient) const;
 
-    /// Add the fluid's impulse on the bodies over one step.
-    void
-    add_impulse(const Tensor<1, dim> &impulse)
-    {
-      meter.add(impulse);
-    }
-
-    std::vector<std::string>
-    columns() const override;
-
-    /// Mean force of the fluid on the bodies since the last call (collective).
-    std::vector<double>
-    mean_force_since_last_call(const double time, MPI_Comm comm) override;
-
   private:
     const VirtualFluidParameters<dim>    prm;
     const double                         g;
     std::unique_ptr<FunctionParser<dim>> extra; ///< null if none
-    ReactionMeter<dim>                   meter;
   };
 } // namespace mpm
 

@@ -9,7 +9,7 @@
 #include <mpm/external_loads.h>
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
-#include <mpm/step_context.h>
+#include <mpm/step_parts.h>
 
 #include <vector>
 
@@ -38,16 +38,9 @@ namespace mpm
     /// @p light_mass: the small-mass guard's nodal mass (contact leaves
     /// fields this light out of its normals). The step's clock in
     /// @p context: the rigid bodies' motion.
-    GridUpdate(const IntegratorParameters<dim>        &parameters,
-               const BackgroundGrid<dim>              &grid,
-               const std::vector<BodyParameters<dim>> &bodies,
-               NodalState<dim>                        &nodes,
-               VelocityRegion<dim>                    &velocity_region,
-               MultiFieldContact<dim>                 *contact,
-               VirtualFluid<dim>                      *virtual_fluid,
-               ExternalLoads<dim>                     &loads,
-               const double                            light_mass,
-               const StepContext                      &context);
+    GridUpdate(const StepParts<dim> &parts,
+               ExternalLoads<dim>   &loads,
+               const double          light_mass);
 
     /// After the grid's partition changed (and the nodal arrays with it).
     void

@@ -337,7 +337,7 @@ namespace mpm
      * undamaged.
      */
     template <int dim, typename Flow>
-    class Model : public PointwiseMaterial<dim, Model<dim, Flow>>
+    class Model : public IsotropicPointwiseMaterial<dim, Model<dim, Flow>>
     {
       static constexpr bool is_viscous = IsViscous<Flow>::value;
 
@@ -345,10 +345,10 @@ namespace mpm
       Model(ParameterHandler  &prm,
             const std::string &path,
             const double       density)
-        : constants(prm, path)
-        , elasticity(constants)
-        , flow(prm, path, constants)
-        , damage(prm, path, constants.youngs_modulus())
+        : IsotropicPointwiseMaterial<dim, Model<dim, Flow>>(prm, path)
+        , elasticity(this->constants)
+        , flow(prm, path, this->constants)
+        , damage(prm, path, this->constants.youngs_modulus())
         , reference_density(density)
       {
       }
@@ -370,24 +370,6 @@ namespace mpm
         if constexpr (CanPart<Flow>::value)
           requests.opening = flow.can_part();
         damage.request_fields(requests);
-      }
-
-      double
-      p_wave_modulus() const override
-      {
-        return constants.lambda + 2. * constants.mu;
-      }
-
-      std::string
-      stiffness_parameters() const override
-      {
-        return constants.given;
-      }
-
-      double
-      shear_modulus() const override
-      {
-        return constants.mu;
       }
 
       bool
@@ -640,7 +622,6 @@ namespace mpm
           Fields::embedded<dim>(p + layout.elastic_left_cauchy_green));
       }
 
-      const ElasticConstants     constants;
       const PrincipalElasticity  elasticity;
       const Flow                 flow;
       const DamageLaw            damage;
@@ -681,7 +662,27 @@ namespace mpm
     /// +infinity) or a number >= 0.
     double
     parse_tension_cutoff(const ParameterHandler &prm, const std::string &path);
+
+    /// The log-strain model with flow rule @p Flow, as the class template
+    /// on the dimension that the registry's material_entry() takes.
+    template <typename Flow>
+    struct ModelOf
+    {
+      template <int dim>
+      using type = Model<dim, Flow>;
+    };
   } // namespace LogStrain
 } // namespace mpm
+
+/**
+ * Define LogStrainModels::@p function (declared in pointwise.h), the
+ * registry entry of the log-strain model with flow rule LogStrain::@p Flow
+ * under @p name: the one line a log-strain model's source file adds.
+ */
+#define MPM_LOG_STRAIN_ENTRY(function, Flow, name)                          \
+  MaterialEntry LogStrainModels::function()                                 \
+  {                                                                         \
+    return material_entry<LogStrain::ModelOf<LogStrain::Flow>::type>(name); \
+  }
 
 #endif

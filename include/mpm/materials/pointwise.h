@@ -80,6 +80,54 @@ namespace mpm
   };
 
 
+  /**
+   * A pointwise model of isotropic ElasticConstants: what the program asks
+   * of its stiffness (the P-wave and shear moduli, the constants as the
+   * scene gave them) answered in one place for every such model.
+   */
+  template <int dim, typename Law>
+  class IsotropicPointwiseMaterial : public PointwiseMaterial<dim, Law>
+  {
+  public:
+    /// The constants from the model's subsection at @p path (the registry
+    /// passes the body's reference density too, which an elastic model
+    /// does not need).
+    IsotropicPointwiseMaterial(ParameterHandler  &prm,
+                               const std::string &path,
+                               const double = 0.)
+      : constants(prm, path)
+    {
+    }
+
+    static void
+    declare_parameters(ParameterHandler &prm)
+    {
+      ElasticConstants::declare(prm);
+    }
+
+    double
+    p_wave_modulus() const override
+    {
+      return constants.lambda + 2. * constants.mu;
+    }
+
+    double
+    shear_modulus() const override
+    {
+      return constants.mu;
+    }
+
+    std::string
+    stiffness_parameters() const override
+    {
+      return constants.given;
+    }
+
+  protected:
+    const ElasticConstants constants;
+  };
+
+
   /// The current Jacobian J = V / V0 of a point, V0 = m / rho0.
   inline double
   jacobian(const double      *properties,

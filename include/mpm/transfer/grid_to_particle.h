@@ -4,7 +4,7 @@
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
-#include <mpm/step_context.h>
+#include <mpm/step_parts.h>
 #include <mpm/transfer/point_loop.h>
 
 #include <string>
@@ -26,12 +26,7 @@ namespace mpm
   {
   public:
     /// @p guard_mass: the small-mass guard's nodal mass.
-    GridToParticle(const IntegratorParameters<dim> &parameters,
-                   MaterialPoints<dim>             &points,
-                   const PointLoop<dim>            &loop,
-                   const NodalState<dim>           &nodes,
-                   const double                     guard_mass,
-                   StepContext                     &context);
+    GridToParticle(const StepParts<dim> &parts, const double guard_mass);
 
     /// Velocities and positions from the grid velocities of a step of
     /// @p dt, and with @p kinematics the strain rate from the

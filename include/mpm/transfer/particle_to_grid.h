@@ -10,7 +10,7 @@
 #include <mpm/grid/nodal_state.h>
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
-#include <mpm/step_context.h>
+#include <mpm/step_parts.h>
 #include <mpm/transfer/point_loop.h>
 
 #include <vector>
@@ -34,15 +34,7 @@ namespace mpm
   {
   public:
     /// The step's clock in @p context: body forces, the fluid's level.
-    ParticleToGrid(const IntegratorParameters<dim> &parameters,
-                   const BackgroundGrid<dim>       &grid,
-                   MaterialPoints<dim>             &points,
-                   const PointLoop<dim>            &loop,
-                   NodalState<dim>                 &nodes,
-                   ExternalLoads<dim>              &loads,
-                   MultiFieldContact<dim>          *contact,
-                   VirtualFluid<dim>               *virtual_fluid,
-                   const StepContext               &context);
+    ParticleToGrid(const StepParts<dim> &parts, ExternalLoads<dim> &loads);
 
     /// After the grid's partition changed (the fluid's nodal volumes).
     void
