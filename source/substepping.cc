@@ -72,7 +72,10 @@ namespace mpm
     TimerOutput::Scope scope(context.timer, "macro step");
     const unsigned int macro_step = points.layout().macro_step;
     for (auto &p : points.handler())
-      f(p, p.get_properties().data() + macro_step);
+      {
+        double *q = p.get_properties().data();
+        f(p, q, q + macro_step);
+      }
   }
 
 
@@ -170,7 +173,7 @@ namespace mpm
   void
   Substepper<dim>::begin()
   {
-    for_each_macro_field([](auto &p, double *m) {
+    for_each_macro_field([](auto &p, double *, double *m) {
       Fields::store(Tensor<1, dim>(p.get_location()), m);
       Fields::store(Tensor<2, dim>(unit_symmetric_tensor<dim>()), m + dim);
     });
@@ -200,9 +203,9 @@ namespace mpm
   Substepper<dim>::accumulate_increment(const double dt)
   {
     const unsigned int L = points.layout().velocity_gradient;
-    for_each_macro_field([&](auto &p, double *m) {
-      const Tensor<2, dim> dF = deformation_increment(
-        Fields::tensor<dim>(p.get_properties().data() + L), dt);
+    for_each_macro_field([&](auto &, double *q, double *m) {
+      const Tensor<2, dim> dF =
+        deformation_increment(Fields::tensor<dim>(q + L), dt);
       Fields::store(Tensor<2, dim>(dF * Fields::tensor<dim>(m + dim)), m + dim);
     });
   }
@@ -219,7 +222,7 @@ namespace mpm
   void
   Substepper<dim>::swap_positions()
   {
-    for_each_macro_field([](auto &p, double *m) {
+    for_each_macro_field([](auto &p, double *, double *m) {
       const Point<dim> other = Point<dim>(Fields::vector<dim>(m));
       Fields::store(Tensor<1, dim>(p.get_location()), m);
       p.set_location(other);

@@ -116,10 +116,11 @@ namespace mpm
     void
     add_point_load_work(const double weight);
 
-    MaterialPoints<dim>                &points;
-    const std::vector<RigidWall<dim> *> rigid_walls;
-    const std::vector<double>          &wave_modulus_of_body;
-    StepContext                        &context;
+    MaterialPoints<dim> &points;
+    /// The integrator's list (StepParts::rigid_walls).
+    const std::vector<RigidWall<dim> *> &rigid_walls;
+    const std::vector<double>           &wave_modulus_of_body;
+    StepContext                         &context;
 
     /// Each body's pressure and traction on its loaded surface and its
     /// body force (null: none).

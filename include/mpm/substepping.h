@@ -134,9 +134,9 @@ namespace mpm
     void
     gather_velocity(const Basis &basis, const double Dt, const bool reset);
 
-    /// Call @p f(p, m) for each point p of this rank, with m its 'macro
-    /// step' field (x^n or x^(n+1), then the substeps' deformation
-    /// increment), timed as the macro step.
+    /// Call @p f(p, q, m) for each point p of this rank, with q its data
+    /// and m its 'macro step' field in it (x^n or x^(n+1), then the
+    /// substeps' deformation increment), timed as the macro step.
     template <typename Function>
     void
     for_each_macro_field(const Function &f);
