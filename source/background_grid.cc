@@ -76,9 +76,13 @@ namespace mpm
                       "all, or one per dimension).");
     for (unsigned int f = 0; f < 6; ++f)
       prm.declare_entry(std::string("boundary ") + face_names[f],
-                        "slip",
-                        Patterns::Selection(boundary_names.selection()),
-                        "Velocity condition on this face of the box: free, "
+                        "default",
+                        Patterns::Selection(boundary_names.selection() +
+                                            "|default"),
+                        "Velocity condition on this face of the box: "
+                        "default (free on the top face, y max in 2D and z "
+                        "max in 3D, where a slope or a pile has nothing to "
+                        "hold it; slip on the others), free, "
                         "fixed (all components zero), slip (normal "
                         "component zero), friction (Coulomb contact with "
                         "'friction coefficient': no flow into the face, "
@@ -350,8 +354,13 @@ namespace mpm
     check_grid_fits_in_memory(prm.get("cells"));
     for (unsigned int f = 0; f < 2 * dim; ++f)
       {
-        boundary[f] = boundary_names.value(
-          prm.get(std::string("boundary ") + face_names[f]));
+        const std::string kind =
+          prm.get(std::string("boundary ") + face_names[f]);
+        // The face above the scene is open unless the scene closes it.
+        const bool top = dim > 1 && f == 2 * dim - 1;
+        boundary[f]    = kind != "default" ? boundary_names.value(kind)
+                         : top             ? BoundaryType::free
+                                           : BoundaryType::slip;
       }
     friction_coefficient =
       Parse::bounded_double(prm, "Grid", "friction coefficient", 0, 1e300);

@@ -21,6 +21,8 @@ namespace mpm
       l.deformation_gradient = add("deformation gradient", dim * dim);
     if (requests.initial_position)
       l.initial_position = add("initial position", dim);
+    if (requests.displacement_origin)
+      l.displacement_origin = add("displacement origin", dim);
     if (requests.affine_velocity)
       l.affine_velocity = add("affine velocity", dim * dim);
     if (requests.elastic_left_cauchy_green)

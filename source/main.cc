@@ -4,16 +4,14 @@
 
 #include <mpm/parameters.h>
 #include <mpm/simulation.h>
+#include <mpm/stages/staged_run.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <regex>
-#include <set>
 #include <sstream>
 
 namespace
@@ -84,46 +82,6 @@ namespace
                                    c.scene + "', '" + a + "')");
       }
     return c;
-  }
-
-
-  /// deal.II's own message for a malformed file or value, on one line.
-  std::string
-  one_line(const ExceptionBase &e)
-  {
-    std::ostringstream s;
-    e.print_info(s);
-    std::string text = std::regex_replace(s.str(), std::regex("\\s+"), " ");
-    return Utilities::trim(text);
-  }
-
-
-  /// Set "A/B/name" = value; an undeclared entry or a value that does not
-  /// fit the entry's pattern is an InputError naming the entry.
-  void
-  apply_override(ParameterHandler  &prm,
-                 const std::string &path,
-                 const std::string &value)
-  {
-    const auto   parts = Utilities::split_string_list(path, '/');
-    unsigned int depth = 0;
-    std::string  problem;
-    try
-      {
-        for (; depth + 1 < parts.size(); ++depth)
-          prm.enter_subsection(parts[depth]);
-        // set() throws (in Release and Debug builds alike) for an entry
-        // that is not declared or a value that does not fit its pattern.
-        prm.set(parts.back(), value);
-      }
-    catch (const ExceptionBase &e)
-      {
-        problem = one_line(e);
-      }
-    for (unsigned int i = 0; i < depth; ++i)
-      prm.leave_subsection();
-    if (!problem.empty())
-      throw mpm::InputError(path, value, problem);
   }
 
 
@@ -332,62 +290,6 @@ namespace
   }
 
 
-  /// The paths ("Simulation/end time") of every parameter @p prm declares,
-  /// read off its own listing.
-  std::set<std::string>
-  declared_paths(const ParameterHandler &prm)
-  {
-    std::ostringstream listing;
-    prm.print_parameters(listing, ParameterHandler::ShortPRM);
-    std::istringstream       in(listing.str());
-    std::set<std::string>    paths;
-    std::vector<std::string> stack;
-    std::string              line;
-    while (std::getline(in, line))
-      {
-        line = Utilities::trim(line);
-        if (line.rfind("subsection ", 0) == 0)
-          stack.push_back(Utilities::trim(line.substr(11)));
-        else if (line == "end" && !stack.empty())
-          stack.pop_back();
-        else if (line.rfind("set ", 0) == 0)
-          {
-            std::string p;
-            for (const auto &section : stack)
-              p += section + "/";
-            paths.insert(p +
-                         Utilities::trim(line.substr(4, line.find('=') - 4)));
-          }
-      }
-    return paths;
-  }
-
-
-  /// Levenshtein distance, case-blind: how far a misspelt path is from a
-  /// declared one.
-  unsigned int
-  edit_distance(const std::string &a, const std::string &b)
-  {
-    std::vector<unsigned int> row(b.size() + 1);
-    for (unsigned int j = 0; j <= b.size(); ++j)
-      row[j] = j;
-    for (unsigned int i = 1; i <= a.size(); ++i)
-      {
-        unsigned int diagonal = row[0];
-        row[0]                = i;
-        for (unsigned int j = 1; j <= b.size(); ++j)
-          {
-            const unsigned int up = row[j];
-            const bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
-            row[j]          = std::min(
-              {row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0u : 1u)});
-            diagonal = up;
-          }
-      }
-    return row[b.size()];
-  }
-
-
   /**
    * A parameter the scene writes (in the file or with -s) that the program
    * does not declare is an input error naming it and the closest declared
@@ -399,24 +301,13 @@ namespace
                         const SceneText        &text,
                         const CommandLine      &c)
   {
-    const std::set<std::string> declared = declared_paths(prm);
-    auto check = [&](const std::string &path, const std::string &where) {
+    const auto declared = mpm::Parse::entries(prm);
+    auto       check = [&](const std::string &path, const std::string &where) {
       if (declared.count(path) > 0)
         return;
-      std::vector<std::pair<unsigned int, std::string>> near;
-      for (const auto &d : declared)
-        near.emplace_back(edit_distance(path, d), d);
-      std::sort(near.begin(), near.end());
-      std::string        suggestions;
-      const unsigned int reach = std::max<unsigned int>(3, path.size() / 4);
-      for (unsigned int i = 0; i < 3 && i < near.size(); ++i)
-        if (near[i].first <= reach)
-          suggestions +=
-            (suggestions.empty() ? "'" : ", '") + near[i].second + "'";
       throw mpm::InputError(
         "parameter '" + path + "' (" + where + ") is not declared" +
-        (suggestions.empty() ? std::string()
-                             : "; did you mean " + suggestions + "?") +
+        mpm::Parse::did_you_mean(path, declared) +
         " ('dealii-mpm --print-parameters' lists them all)");
     };
     for (const auto &[path, where] : text.written_entries())
@@ -435,21 +326,25 @@ namespace
   read_scene(ParameterHandler &prm, const CommandLine &c)
   {
     const SceneText text(c.scene, c);
-    unsigned int    n_bodies = 1, n_walls = 0;
+    unsigned int    n_bodies = 1, n_walls = 0, n_stages = 0;
     {
       ParameterHandler first;
       mpm::declare_scene_parameters(first, 1);
       first.parse_input(c.scene, "", true);
+      const std::map<std::string, unsigned int *> counts = {
+        {"Bodies/number of bodies", &n_bodies},
+        {"Boundary conditions/number of rigid walls", &n_walls},
+        {"Stages/number of stages", &n_stages}};
       for (const auto &[path, value] : c.overrides)
-        if (path == "Bodies/number of bodies" ||
-            path == "Boundary conditions/number of rigid walls")
-          apply_override(first, path, value);
-      first.enter_subsection("Bodies");
-      n_bodies = first.get_integer("number of bodies");
-      first.leave_subsection();
-      first.enter_subsection("Boundary conditions");
-      n_walls = first.get_integer("number of rigid walls");
-      first.leave_subsection();
+        if (counts.count(path) > 0)
+          mpm::Parse::set_entry(first, path, value);
+      for (const auto &[path, count] : counts)
+        {
+          const auto slash = path.find('/');
+          first.enter_subsection(path.substr(0, slash));
+          *count = first.get_integer(path.substr(slash + 1));
+          first.leave_subsection();
+        }
     }
     check_numbered_sections(
       text, "Bodies", "Body", n_bodies, "Bodies/number of bodies");
@@ -458,35 +353,14 @@ namespace
                             "Rigid wall",
                             n_walls,
                             "Boundary conditions/number of rigid walls");
-    mpm::declare_scene_parameters(prm, n_bodies, n_walls);
+    check_numbered_sections(
+      text, "Stages", "Stage", n_stages, "Stages/number of stages");
+    mpm::declare_scene_parameters(prm, n_bodies, n_walls, n_stages);
     check_parameter_names(prm, text, c);
     prm.parse_input(c.scene);
     for (const auto &[path, value] : c.overrides)
-      apply_override(prm, path, value);
+      mpm::Parse::set_entry(prm, path, value);
     resolve_mesh_files(prm, n_bodies, c.scene);
-  }
-
-
-  template <int dim>
-  void
-  run(ParameterHandler &prm, const std::string &restart)
-  {
-    // Let the simulation (and its TimerOutput, which communicates in its
-    // destructor) be destroyed normally before a failure is passed on.
-    std::exception_ptr failure;
-    {
-      mpm::Simulation<dim> simulation(prm, MPI_COMM_WORLD, restart);
-      try
-        {
-          simulation.run();
-        }
-      catch (...)
-        {
-          failure = std::current_exception();
-        }
-    }
-    if (failure)
-      std::rethrow_exception(failure);
   }
 } // namespace
 
@@ -528,19 +402,20 @@ main(int argc, char **argv)
       if (c.scene.empty())
         throw std::runtime_error(std::string("no scene file given\n") + usage);
       read_scene(prm, c);
+      const auto read_again = [&c](ParameterHandler &p) { read_scene(p, c); };
       prm.enter_subsection("Simulation");
       const int dim = prm.get_integer("dimension");
       prm.leave_subsection();
       switch (dim)
         {
           case 1:
-            run<1>(prm, c.restart);
+            mpm::run_scene<1>(prm, MPI_COMM_WORLD, c.restart, read_again);
             break;
           case 2:
-            run<2>(prm, c.restart);
+            mpm::run_scene<2>(prm, MPI_COMM_WORLD, c.restart, read_again);
             break;
           default:
-            run<3>(prm, c.restart);
+            mpm::run_scene<3>(prm, MPI_COMM_WORLD, c.restart, read_again);
         }
     }
   catch (const mpm::InputError &e)
@@ -555,7 +430,7 @@ main(int argc, char **argv)
     }
   catch (const ExceptionBase &e)
     {
-      error("input error", one_line(e));
+      error("input error", mpm::Parse::one_line(e));
       return 1;
     }
   catch (const std::exception &e)

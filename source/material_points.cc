@@ -50,6 +50,22 @@ namespace mpm
 
 
   template <int dim>
+  void
+  MaterialPoints<dim>::reset_displacement_origin()
+  {
+    const unsigned int origin = fields.displacement_origin;
+    if (origin == FieldLayout::absent)
+      return;
+    for (auto &p : particles)
+      {
+        const Point<dim> x = p.get_location();
+        for (unsigned int d = 0; d < dim; ++d)
+          p.get_properties()[origin + d] = x[d];
+      }
+  }
+
+
+  template <int dim>
   std::string
   MaterialPoints<dim>::overlap_at(const unsigned int b,
                                   const Point<dim>  &x) const
@@ -200,6 +216,9 @@ namespace mpm
                   if (l.initial_position != FieldLayout::absent)
                     for (unsigned int d = 0; d < dim; ++d)
                       p[l.initial_position + d] = x[d];
+                  if (l.displacement_origin != FieldLayout::absent)
+                    for (unsigned int d = 0; d < dim; ++d)
+                      p[l.displacement_origin + d] = x[d];
                   if (l.surface_area != FieldLayout::absent)
                     Fields::store(surface.area, p.data() + l.surface_area);
                   if (l.surface_offset != FieldLayout::absent)

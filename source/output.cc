@@ -154,10 +154,14 @@ namespace mpm
          true,
          point_vector<dim>("displacement",
                            [](const It &p, const FieldLayout &l) {
+                             // From the last reset of a stage, if any.
+                             const unsigned int origin =
+                               l.displacement_origin != FieldLayout::absent
+                                 ? l.displacement_origin
+                                 : l.initial_position;
                              return p->get_location() -
                                     Point<dim>(Fields::vector<dim>(
-                                      p->get_properties().data() +
-                                      l.initial_position));
+                                      p->get_properties().data() + origin));
                            })},
         {"stress",
          "",

@@ -5,10 +5,12 @@
 #include <mpm/parameters.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -113,6 +115,122 @@ namespace mpm
           const std::string      &name)
     {
       return "'" + join(path, name) + "' = '" + prm.get(name) + "'";
+    }
+
+
+    std::map<std::string, std::string>
+    entries(const ParameterHandler &prm)
+    {
+      std::ostringstream listing;
+      prm.print_parameters(listing, ParameterHandler::ShortPRM);
+      std::istringstream                 lines(listing.str());
+      std::vector<std::string>           path;
+      std::map<std::string, std::string> found;
+      std::string                        line;
+      while (std::getline(lines, line))
+        {
+          line = Utilities::trim(line);
+          if (line.rfind("subsection ", 0) == 0)
+            path.push_back(Utilities::trim(line.substr(11)));
+          else if (line == "end" && !path.empty())
+            path.pop_back();
+          else if (line.rfind("set ", 0) == 0)
+            {
+              const auto  equals = line.find('=');
+              std::string p;
+              for (const auto &section : path)
+                p += section + "/";
+              found[p + Utilities::trim(line.substr(4, equals - 4))] =
+                equals == std::string::npos
+                  ? ""
+                  : Utilities::trim(line.substr(equals + 1));
+            }
+        }
+      return found;
+    }
+
+
+    std::string
+    one_line(const ExceptionBase &e)
+    {
+      std::ostringstream s;
+      e.print_info(s);
+      return Utilities::trim(
+        std::regex_replace(s.str(), std::regex("\\s+"), " "));
+    }
+
+
+    void
+    set_entry(ParameterHandler  &prm,
+              const std::string &path,
+              const std::string &value)
+    {
+      const auto   parts = Utilities::split_string_list(path, '/');
+      unsigned int depth = 0;
+      std::string  problem;
+      try
+        {
+          for (; depth + 1 < parts.size(); ++depth)
+            prm.enter_subsection(parts[depth]);
+          // set() throws (in Release and Debug builds alike) for an entry
+          // that is not declared or a value that does not fit its pattern.
+          prm.set(parts.back(), value);
+        }
+      catch (const ExceptionBase &e)
+        {
+          problem = one_line(e);
+        }
+      for (unsigned int i = 0; i < depth; ++i)
+        prm.leave_subsection();
+      if (!problem.empty())
+        throw InputError(path, value, problem);
+    }
+
+
+    namespace
+    {
+      /// Levenshtein distance, case-blind: how far a misspelt path is from
+      /// a declared one.
+      unsigned int
+      edit_distance(const std::string &a, const std::string &b)
+      {
+        std::vector<unsigned int> row(b.size() + 1);
+        for (unsigned int j = 0; j <= b.size(); ++j)
+          row[j] = j;
+        for (unsigned int i = 1; i <= a.size(); ++i)
+          {
+            unsigned int diagonal = row[0];
+            row[0]                = i;
+            for (unsigned int j = 1; j <= b.size(); ++j)
+              {
+                const unsigned int up = row[j];
+                const bool         same =
+                  std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
+                row[j] = std::min(
+                  {row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0u : 1u)});
+                diagonal = up;
+              }
+          }
+        return row[b.size()];
+      }
+    } // namespace
+
+
+    std::string
+    did_you_mean(const std::string                        &path,
+                 const std::map<std::string, std::string> &declared)
+    {
+      std::vector<std::pair<unsigned int, std::string>> near;
+      for (const auto &d : declared)
+        near.emplace_back(edit_distance(path, d.first), d.first);
+      std::sort(near.begin(), near.end());
+      std::string        suggestions;
+      const unsigned int reach = std::max<unsigned int>(3, path.size() / 4);
+      for (unsigned int i = 0; i < 3 && i < near.size(); ++i)
+        if (near[i].first <= reach)
+          suggestions +=
+            (suggestions.empty() ? "'" : ", '") + near[i].second + "'";
+      return suggestions.empty() ? "" : "; did you mean " + suggestions + "?";
     }
 
 

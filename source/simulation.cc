@@ -38,7 +38,8 @@ namespace mpm
   void
   declare_scene_parameters(ParameterHandler  &prm,
                            const unsigned int n_bodies,
-                           const unsigned int n_walls)
+                           const unsigned int n_walls,
+                           const unsigned int n_stages)
   {
     prm.enter_subsection("Simulation");
     prm.declare_entry("dimension",
@@ -82,57 +83,21 @@ namespace mpm
     OutputParameters::declare_parameters(prm);
     CheckpointParameters::declare_parameters(prm);
     VerificationParameters::declare_parameters(prm);
+    StageParameters::declare_parameters(prm, n_stages);
   }
 
 
 
-  namespace
-  {
-    /// Every entry of @p prm by its path, as given (from deal.II's short
-    /// PRM listing: "subsection", "set name = value", "end").
-    std::map<std::string, std::string>
-    entries_of(const ParameterHandler &prm)
-    {
-      std::ostringstream listing;
-      prm.print_parameters(listing, ParameterHandler::ShortPRM);
-      std::istringstream                 lines(listing.str());
-      std::vector<std::string>           path;
-      std::map<std::string, std::string> entries;
-      std::string                        line;
-      const auto                         joined = [&](const std::string &name) {
-        std::string p;
-        for (const auto &s : path)
-          p += s + "/";
-        return p + name;
-      };
-      while (std::getline(lines, line))
-        {
-          line = Utilities::trim(line);
-          if (line.rfind("subsection ", 0) == 0)
-            path.push_back(Utilities::trim(line.substr(11)));
-          else if (line == "end" && !path.empty())
-            path.pop_back();
-          else if (line.rfind("set ", 0) == 0)
-            {
-              const auto equals = line.find(" = ");
-              if (equals != std::string::npos)
-                entries[joined(Utilities::trim(line.substr(4, equals - 4)))] =
-                  Utilities::trim(line.substr(equals + 3));
-            }
-        }
-      return entries;
-    }
-  } // namespace
-
-
   template <int dim>
-  Simulation<dim>::Simulation(ParameterHandler  &prm,
-                              MPI_Comm           comm,
-                              const std::string &restart)
+  Simulation<dim>::Simulation(ParameterHandler    &prm,
+                              MPI_Comm             comm,
+                              const std::string   &restart,
+                              const StagePosition &stage)
     : comm(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
     , restart(restart)
-    , scene_entries(entries_of(prm))
+    , scene_entries(Parse::entries(prm))
+    , stage(stage)
   {
     grid_parameters.parse_parameters(prm);
     integrator_parameters.parse_parameters(prm);
@@ -160,6 +125,18 @@ namespace mpm
                        "HDF5",
                        "needs dimension 2 or 3 (deal.II writes HDF5 for 2D and "
                        "3D data only); use VTU");
+    if (stage.staged() && stage.stages->size() > 1 && dim == 1)
+      throw InputError("Stages/number of stages",
+                       std::to_string(stage.stages->size()),
+                       "needs dimension 2 or 3 (a stage starts from the "
+                       "checkpoint of the one before, and deal.II saves "
+                       "distributed triangulations only)");
+    if (stage.staged() && stage.current().end == StageEnd::equilibrium &&
+        integrator_parameters.gravity.norm() == 0)
+      throw InputError(stage.current().path + "/end",
+                       "equilibrium",
+                       "needs gravity: the out-of-balance force is measured "
+                       "against the bodies' weight");
     if (dim == 1 && (checkpoint_parameters.enabled() || !restart.empty()))
       throw InputError("Checkpoint/interval",
                        "(or --restart)",
@@ -169,7 +146,7 @@ namespace mpm
 
 
   template <int dim>
-  void
+  RunEnding
   Simulation<dim>::run()
   {
     Timer wall;
@@ -217,9 +194,10 @@ namespace mpm
         pcout << "  restarted from '" << checkpoint << "' at t = " << t
               << ", step " << integrator->step_number() << std::endl;
       }
+    begin_stage(resume.get());
     first_step           = integrator->step_number();
     last_checkpoint_wall = wall.wall_time();
-    run_time_loop(wall);
+    return run_time_loop(wall);
   }
 
 
@@ -278,13 +256,16 @@ namespace mpm
         return n;
       },
       resume == nullptr ? "" : Checkpoint::grid_file(checkpoint));
-    const FieldRequests fields =
+    FieldRequests fields =
       point_fields_needed(integrator_parameters,
                           body_parameters,
                           rigid_wall_parameters,
                           output_parameters.writes("displacement") ||
                             Verification<dim>::needs_initial_position(
                               verification_parameters));
+    if (stage.staged())
+      for (const auto &s : *stage.stages)
+        fields.displacement_origin |= s.reset_displacements;
     setup_scope.reset();
     setup_scope.emplace(*timer, "setup: points");
     points = std::make_unique<MaterialPoints<dim>>(*grid,
@@ -360,6 +341,8 @@ namespace mpm
       }
     else
       next_checkpoint_time = checkpoint_parameters.interval;
+    if (stage.any_equilibrium())
+      integrator->measure_out_of_balance();
     force_reporters = {velocity_region.get()};
     for (const auto &wall : rigid_walls)
       force_reporters.push_back(wall.get());
@@ -381,6 +364,10 @@ namespace mpm
         columns.push_back(c);
     if (integrator_parameters.energy_residual)
       columns.push_back("energy_residual");
+    if (stage.staged())
+      columns.push_back("stage");
+    if (stage.any_equilibrium())
+      columns.push_back("out_of_balance");
     if (output_parameters.body_extents)
       {
         extents =
@@ -412,10 +399,10 @@ namespace mpm
    * where its last good output is.
    */
   template <int dim>
-  void
+  RunEnding
   Simulation<dim>::run_time_loop(const Timer &wall)
   {
-    const double end_time   = integrator_parameters.end_time;
+    const double end_time   = run_end_time();
     double       last_print = 0;
     const double start      = wall.wall_time();
     // Also between the substeps of a macro step, which may take long.
@@ -429,9 +416,11 @@ namespace mpm
     integrator->after_substep = report_progress;
     Timer stepping; // time in steps only: the cost per particle-step
     stepping.stop();
+    // A restart at the end of a stage has no step left in it.
+    bool stage_end = stage.staged() && stage_reached_end();
     try
       {
-        while (integrator->time() < end_time * (1 - 1e-12))
+        while (!stage_end && integrator->time() < end_time * (1 - 1e-12))
           {
             double max_dt = end_time - integrator->time();
             if (output_parameters.interval > 0)
@@ -443,14 +432,22 @@ namespace mpm
             integrator->step(max_dt);
             stepping.stop();
             const double now = integrator->time();
+            stage_end        = stage.staged() && stage_is_over();
             if (output_parameters.interval == 0 ||
                 now >= output->next_output_time() * (1 - 1e-12) ||
-                now >= end_time * (1 - 1e-12))
+                now >= end_time * (1 - 1e-12) || stage_end)
               {
                 write_output(wall.wall_time());
                 checkpoint_if_due(wall.wall_time());
               }
             report_progress();
+            if (stage_end)
+              break;
+          }
+        if (stage_end)
+          {
+            print_performance(wall.wall_time() - start, stepping.wall_time());
+            return end_stage();
           }
       }
     catch (const RunError &e)
@@ -463,6 +460,122 @@ namespace mpm
       }
     print_performance(wall.wall_time() - start, stepping.wall_time());
     verification->check(pcout);
+    return {};
+  }
+
+
+  template <int dim>
+  double
+  Simulation<dim>::run_end_time() const
+  {
+    if (!stage.staged())
+      return integrator_parameters.end_time;
+    return std::min(integrator_parameters.end_time,
+                    stage_start_time + stage.current().duration);
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::begin_stage(const RunState *resume)
+  {
+    if (!stage.staged())
+      return;
+    weight =
+      Statistics<dim>::compute(*points, integrator_parameters.gravity, comm)
+        .mass *
+      integrator_parameters.gravity.norm();
+    const StageParameters &s = stage.current();
+    if (resume != nullptr && !stage.entering &&
+        resume->values.count("stage_start_time") > 0)
+      {
+        stage_start_time = resume->get("stage_start_time");
+        steps_in_balance = resume->get("steps_in_balance");
+        out_of_balance   = resume->get("out_of_balance");
+      }
+    else
+      {
+        stage_start_time = integrator->time();
+        if (stage.entering && s.reset_displacements)
+          points->reset_displacement_origin();
+      }
+    pcout << "  stage " << stage.index << " of " << stage.stages->size()
+          << " ('" << s.path << "'): from t = " << stage_start_time
+          << ", at most " << s.duration
+          << (s.end == StageEnd::equilibrium
+                ? " s, or to equilibrium (out-of-balance force below " +
+                    std::to_string(s.tolerance) + " of the weight)"
+                : " s")
+          << ", " << s.changes.size() << " change"
+          << (s.changes.size() == 1 ? "" : "s") << std::endl;
+  }
+
+
+  template <int dim>
+  bool
+  Simulation<dim>::stage_is_over()
+  {
+    const StageParameters &s = stage.current();
+    // Measured in every stage once one ends at equilibrium: the column
+    // then shows how far a released slope is from it.
+    if (stage.any_equilibrium())
+      out_of_balance = integrator->out_of_balance_force() / weight;
+    if (s.end == StageEnd::equilibrium)
+      steps_in_balance =
+        out_of_balance < s.tolerance ? steps_in_balance + 1 : 0;
+    return stage_reached_end();
+  }
+
+
+  template <int dim>
+  bool
+  Simulation<dim>::stage_reached_end() const
+  {
+    return steps_in_balance >= balanced_steps ||
+           integrator->time() >=
+             (stage_start_time + stage.current().duration) * (1 - 1e-12);
+  }
+
+
+  template <int dim>
+  RunEnding
+  Simulation<dim>::end_stage()
+  {
+    const StageParameters &s = stage.current();
+    RunEnding              ending;
+    ending.stage_ended = true;
+    ending.equilibrium = steps_in_balance >= balanced_steps;
+    if (s.end == StageEnd::equilibrium && !ending.equilibrium &&
+        s.stop_if_not_reached)
+      {
+        std::ostringstream message;
+        message << "stage " << stage.index << " ('" << s.path
+                << "') did not reach equilibrium within its duration of "
+                << s.duration << " s: at t = " << integrator->time()
+                << " the out-of-balance force is " << out_of_balance
+                << " of the weight (tolerance " << s.tolerance
+                << "). The bodies may be failing, or still settling: "
+                   "lengthen its 'duration', damp the motion ('Simulation/"
+                   "local damping'), or set its 'if not in equilibrium = "
+                   "continue'";
+        throw RunError(message.str());
+      }
+    pcout << "  stage " << stage.index << " ended at t = " << integrator->time()
+          << (s.end != StageEnd::equilibrium ? " (its duration)"
+              : ending.equilibrium           ? " in equilibrium"
+                                             : " without equilibrium")
+          << (s.end == StageEnd::equilibrium
+                ? ", out-of-balance force " + std::to_string(out_of_balance) +
+                    " of the weight"
+                : "")
+          << std::endl;
+    if (!stage.is_last())
+      {
+        ending.checkpoint =
+          output_parameters.directory + "/stage_" + std::to_string(stage.index);
+        save_checkpoint(ending.checkpoint);
+      }
+    return ending;
   }
 
 
@@ -534,13 +647,21 @@ namespace mpm
     // What a restart may change: when to stop, what to write, where to
     // save (and how unbalanced the ranks may be, as their number may
     // change). Everything else is the physics the checkpoint continues.
-    const auto may_change = [](const std::string &path) {
+    // A stage's start changes what its changes name (and what the stages
+    // before it changed, which the checkpoint of the stage before holds
+    // already).
+    const auto may_change = [this](const std::string &path) {
       for (const std::string prefix : {"Simulation/end time",
                                        "Output/",
                                        "Checkpoint/",
-                                       "Grid/load imbalance limit"})
+                                       "Grid/load imbalance limit",
+                                       "Stages/"})
         if (path.rfind(prefix, 0) == 0)
           return true;
+      if (stage.entering)
+        for (const auto &change : stage.current().changes)
+          if (change.first == path)
+            return true;
       return false;
     };
     // A checkpoint of an older version holds no entries: nothing to
@@ -600,10 +721,19 @@ namespace mpm
       c.interval > 0 && now >= next_checkpoint_time * (1 - 1e-12);
     if (!by_wall && !by_time)
       return;
-    TimerOutput::Scope scope(*timer, "checkpoint");
     if (c.interval > 0)
       next_checkpoint_time = multiple_after(now, c.interval);
-    RunState state;
+    save_checkpoint(c.directory);
+    last_checkpoint_wall = wall_seconds;
+  }
+
+
+  template <int dim>
+  void
+  Simulation<dim>::save_checkpoint(const std::string &directory)
+  {
+    TimerOutput::Scope scope(*timer, "checkpoint");
+    RunState           state;
     integrator->save_state(state);
     verification->save_state(state);
     energy_guard->save_state(state);
@@ -614,9 +744,15 @@ namespace mpm
     state.values["point_properties"]     = points->layout().n_properties;
     state.values["grid_cells"]           = grid->n_cells();
     state.values["rebalances"]           = n_rebalances;
-    state.scene                          = scene_entries;
-    Checkpoint::save(c.directory, *grid, *points, state, comm);
-    last_checkpoint_wall = wall_seconds;
+    if (stage.staged())
+      {
+        state.values["stage"]            = stage.index;
+        state.values["stage_start_time"] = stage_start_time;
+        state.values["steps_in_balance"] = steps_in_balance;
+        state.values["out_of_balance"]   = out_of_balance;
+      }
+    state.scene = scene_entries;
+    Checkpoint::save(directory, *grid, *points, state, comm);
   }
 
 
@@ -648,6 +784,10 @@ namespace mpm
       energy_guard->check(s, work, absolute_work, absorbed, integrator->time());
     if (integrator_parameters.energy_residual)
       extra.push_back(put_in > 0 ? residual / put_in : 0.);
+    if (stage.staged())
+      extra.push_back(stage.index);
+    if (stage.any_equilibrium())
+      extra.push_back(out_of_balance);
     // A body without points (or without a deposit) has no extents: the
     // writer leaves their fields empty.
     if (extents)

@@ -724,6 +724,22 @@ main()
                  const double pw = phi + w * (20 * M_PI / 180 - phi);
                  return mohr_coulomb_f(sorted_principal(tau), cw, pw) / 1e4;
                });
+  // Softening of the cohesion alone: the residual friction and dilation
+  // angles default to the peak ones ('peak'), so phi stays 30 degrees.
+  random_paths("Mohr-Coulomb",
+               {{"Young's modulus", "1e7"},
+                {"Poisson's ratio", "0.3"},
+                {"cohesion", "1e4"},
+                {"friction angle", "30"},
+                {"dilation angle", "10"},
+                {"softening", "linear"},
+                {"residual cohesion", "2e3"},
+                {"residual plastic strain", "0.05"}},
+               [&](const SymmetricTensor<2, 3> &tau, const double eqps) {
+                 const double w  = std::min(eqps / 0.05, 1.);
+                 const double cw = 1e4 + w * (2e3 - 1e4);
+                 return mohr_coulomb_f(sorted_principal(tau), cw, phi) / 1e4;
+               });
 
   std::cout << (all_ok ? "passed" : "FAILED") << std::endl;
   return all_ok ? 0 : 1;

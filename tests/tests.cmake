@@ -1321,3 +1321,37 @@ mpm_test(two_disks_macro_ls PRM two_disks.prm
   ARGS ${macro_args} -s "Simulation/macro reconstruction=least squares")
 mpm_test(two_disks_macro_ls_mpi2 PRM two_disks.prm NP 2 REFERENCE two_disks_macro_ls.output
   RELTOL 1e-7 ARGS ${macro_args} -s "Simulation/macro reconstruction=least squares")
+
+# 20. Stages (issue 33): the slope of Griffiths and Lane (1999), 2 m cells.
+#     Gravity loading under local damping ends in equilibrium (the
+#     out-of-balance force below 1e-3 of the weight, t = 1.74 s), the
+#     displacements count from the release, the released slope stays at
+#     rest (kinetic energy 3e-6 of the strain energy, 0.1 mm), and restarts
+#     within stage 1 and from the end of stage 0 are bit for bit; on 1 and
+#     2 ranks.
+foreach(np 1 2)
+  add_test(NAME slope_stages_np${np}
+    COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/slope/slope.py
+      --exe $<TARGET_FILE:dealii-mpm> --check-stages --cells "16, 6" --np ${np})
+endforeach()
+set_tests_properties(slope_stages_np2 PROPERTIES PROCESSORS 2)
+#     What a stage may not do, named with the parameter.
+set(slope_prm ../benchmarks/slope/slope.prm)
+mpm_test(bad_stage_change_fixed PRM ${slope_prm} EXIT 1
+  ARGS -s "Stages/Stage 1/changes=Grid/cells=8"
+  ERROR "parameter 'Stages/Stage 1/changes' = 'Grid/cells=8': a stage cannot change 'Grid/cells', which is fixed for the whole run")
+mpm_test(bad_stage_change_misspelt PRM ${slope_prm} EXIT 1
+  ARGS -s "Stages/Stage 1/changes=Simulation/locl damping = 0"
+  ERROR "'Simulation/locl damping' is not a declared parameter; did you mean 'Simulation/local damping'")
+mpm_test(bad_stage_change_value PRM ${slope_prm} EXIT 1
+  ARGS -s "Stages/Stage 1/changes=Simulation/local damping = 2"
+  ERROR "parameter 'Simulation/local damping' = '2': allowed range is")
+mpm_test(bad_stage_equilibrium_without_gravity PRM ${slope_prm} EXIT 1
+  ARGS -s "Simulation/gravity=0, 0"
+  ERROR "parameter 'Stages/Stage 0/end' = 'equilibrium': needs gravity")
+mpm_test(bad_stage_section_missing PRM ${slope_prm} EXIT 1
+  ARGS -s "Stages/number of stages=3"
+  ERROR "but the scene has no section 'Stages/Stage 2'")
+mpm_test(bad_stage_not_in_equilibrium PRM ${slope_prm} EXIT 2
+  ARGS -s "Stages/Stage 0/duration=0.2"
+  ERROR "stage 0 .'Stages/Stage 0'. did not reach equilibrium within its duration of 0.2 s")

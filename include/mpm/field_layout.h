@@ -33,6 +33,9 @@ namespace mpm
     unsigned int body                 = absent; ///< 1, body index
     unsigned int deformation_gradient = absent; ///< dim*dim, optional
     unsigned int initial_position     = absent; ///< dim, optional
+    /// dim, a stage resets displacements only: where the displacement
+    /// output counts from (the initial position until a reset).
+    unsigned int displacement_origin = absent;
     unsigned int affine_velocity      = absent; ///< dim*dim, APIC's C_p
     /// Elastic left Cauchy-Green tensor b_e of the log-strain models, in
     /// the embedded form of Fields::embedded (3, 4 or 6 values).
@@ -86,6 +89,7 @@ namespace mpm
   struct FieldRequests
   {
     bool initial_position          = false;
+    bool displacement_origin       = false;
     bool deformation_gradient      = false;
     bool affine_velocity           = false;
     bool elastic_left_cauchy_green = false;

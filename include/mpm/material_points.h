@@ -132,6 +132,12 @@ namespace mpm
       return n_repacks;
     }
 
+    /// A stage resets displacements: every point's current position becomes
+    /// the origin its displacement output counts from (nothing if the
+    /// points do not store one).
+    void
+    reset_displacement_origin();
+
     /// Smallest point mass in the scene (for the small-mass guard).
     double
     min_particle_mass() const

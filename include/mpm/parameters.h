@@ -93,6 +93,30 @@ namespace mpm
     double
     number(const std::string &text);
 
+    /// Every entry @p prm declares, by its path ("Simulation/end time"),
+    /// with its value as given (read off deal.II's own short listing).
+    std::map<std::string, std::string>
+    entries(const ParameterHandler &prm);
+
+    /// Set the entry at @p path ("Bodies/Body 0/density") to @p value; an
+    /// entry that is not declared or a value that does not fit its pattern
+    /// is an InputError naming the path.
+    void
+    set_entry(ParameterHandler  &prm,
+              const std::string &path,
+              const std::string &value);
+
+    /// "; did you mean 'A', 'B'?" with the (up to three) paths of
+    /// @p declared closest to the misspelt @p path, or "" if none is
+    /// close.
+    std::string
+    did_you_mean(const std::string                        &path,
+                 const std::map<std::string, std::string> &declared);
+
+    /// deal.II's own message for a malformed file or value, on one line.
+    std::string
+    one_line(const ExceptionBase &e);
+
     /// "'path/name' = 'text'": an entry as the scene gives it, for
     /// messages that name a parameter they did not read themselves.
     std::string

@@ -9,6 +9,7 @@
 #include <mpm/energy_guard.h>
 #include <mpm/material_points.h>
 #include <mpm/output.h>
+#include <mpm/stages/stage_parameters.h>
 #include <mpm/time_integrator.h>
 #include <mpm/verification.h>
 
@@ -17,15 +18,29 @@ namespace mpm
   using namespace dealii;
 
   /**
-   * Declare every parameter of a scene with @p n_bodies bodies and
-   * @p n_walls rigid walls. The
+   * Declare every parameter of a scene with @p n_bodies bodies,
+   * @p n_walls rigid walls and @p n_stages stages. The
    * declarations do not depend on the dimension: vectors are lists that
    * are checked against it when they are parsed.
    */
   void
   declare_scene_parameters(ParameterHandler  &prm,
                            const unsigned int n_bodies,
-                           const unsigned int n_walls = 0);
+                           const unsigned int n_walls  = 0,
+                           const unsigned int n_stages = 0);
+
+
+  /// How Simulation::run() ended.
+  struct RunEnding
+  {
+    /// At the end of its stage, not at the end time (nor in equilibrium
+    /// if the stage stopped without it and may continue).
+    bool stage_ended = false;
+    /// The stage reached equilibrium.
+    bool equilibrium = false;
+    /// The checkpoint the next stage starts from (none after the last).
+    std::string checkpoint;
+  };
 
 
   /// Wires the components of the design together and runs the scene.
@@ -33,14 +48,17 @@ namespace mpm
   class Simulation
   {
   public:
-    /// @p restart: a checkpoint directory to continue from (empty: start).
-    Simulation(ParameterHandler  &prm,
-               MPI_Comm           comm,
-               const std::string &restart = "");
+    /// @p restart: a checkpoint directory to continue from (empty: start);
+    /// @p stage: where the run stands among the scene's stages (none by
+    /// default).
+    Simulation(ParameterHandler    &prm,
+               MPI_Comm             comm,
+               const std::string   &restart = "",
+               const StagePosition &stage   = {});
 
     /// Set up the scene (or take it back from a checkpoint) and run it
-    /// to its end time.
-    void
+    /// to its end time, or to the end of its stage.
+    RunEnding
     run();
 
   private:
@@ -58,8 +76,31 @@ namespace mpm
     void
     set_up_output(const RunState *resume);
     /// Step to the end time, with output, checkpoints and progress.
-    void
+    RunEnding
     run_time_loop(const Timer &wall);
+    /// The stage's clock and equilibrium count: from @p resume if the run
+    /// continues within its stage, else started now (and the displacements
+    /// reset if the stage asks).
+    void
+    begin_stage(const RunState *resume);
+    /// After a step: has the stage reached its end (duration or
+    /// equilibrium)? Measures the out-of-balance force (collective).
+    bool
+    stage_is_over();
+    /// Has the stage reached its end (as last measured)?
+    bool
+    stage_reached_end() const;
+    /// The stage ended: the checkpoint the next stage starts from, or the
+    /// diagnosis of an equilibrium not reached.
+    RunEnding
+    end_stage();
+    /// The simulated time the run steps to: the end time, or the end of
+    /// the stage if sooner.
+    double
+    run_end_time() const;
+    /// Write a checkpoint of the run as it stands into @p directory.
+    void
+    save_checkpoint(const std::string &directory);
     /// Refuse a checkpoint written by another scene (grid or point fields).
     [[noreturn]] void
     throw_scene_differs(const RunState &resume) const;
@@ -129,6 +170,15 @@ namespace mpm
     std::map<std::string, std::string> scene_entries;
     bool                               bodies_may_overlap;
     VerificationParameters             verification_parameters;
+    /// The stage this run is in (none if the scene has no stages).
+    StagePosition stage;
+    double        stage_start_time = 0;
+    /// Steps in a row with the out-of-balance force below the stage's
+    /// tolerance, and the latest ratio of that force to the weight.
+    unsigned int steps_in_balance = 0;
+    double       out_of_balance   = 0;
+    /// The bodies' weight, the scale of the out-of-balance force.
+    double weight = 0;
 
     std::unique_ptr<TimerOutput>         timer; ///< made in run(), see there
     std::unique_ptr<BackgroundGrid<dim>> grid;

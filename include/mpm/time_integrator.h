@@ -158,6 +158,23 @@ namespace mpm
       return limits.initial_step();
     }
 
+    /// Measure the out-of-balance force at each force update (a stage that
+    /// ends at equilibrium).
+    void
+    measure_out_of_balance()
+    {
+      grid_update.measure_out_of_balance = true;
+    }
+    /// The sum over the grid's nodes of the magnitude of the out-of-balance
+    /// force at the last force update (GridUpdate::out_of_balance_force();
+    /// collective).
+    double
+    out_of_balance_force() const
+    {
+      return Utilities::MPI::sum(grid_update.local_out_of_balance,
+                                 context.comm);
+    }
+
     /// Called after every substep of a macro step (the progress line of a
     /// macro step that takes long).
     std::function<void()> after_substep;

@@ -108,6 +108,8 @@ namespace mpm
                              motion_factor * (vel[v_new + d] - vel[v_old + d]);
         }
     apply_constraints(v_new, dt);
+    if (measure_out_of_balance)
+      local_out_of_balance = out_of_balance_force(dt);
     nodes.velocities.update_ghost_values();
     if (virtual_fluid)
       {
@@ -119,6 +121,52 @@ namespace mpm
                            (u[n_velocities * i + v_old + d] +
                             u[n_velocities * i + v_new + d]));
       }
+  }
+
+
+  /**
+   * The force update set v_new = (v_old + dt (f + f_d) / m) / (1 + c dt)
+   * (then Newmark's factor), f_d the local damping's -alpha |f| sign(v_old);
+   * the constraints then changed v_new. Taken back from the constrained
+   * v_new without the damping, m ((1 + c dt) v_new - v_old) / dt - f_d is f
+   * where nothing constrains the node and the part of f the constraints
+   * did not take elsewhere: zero on a fixed node and along a slip face's
+   * normal (v_old, v_new and f_d vanish there), the whole force where a
+   * node moves freely.
+   */
+  template <int dim>
+  double
+  GridUpdate<dim>::out_of_balance_force(const double dt) const
+  {
+    const double      *g        = nodes.sums.get_values();
+    const double      *u        = nodes.velocities.get_values();
+    const double       c_dt     = prm.damping * dt;
+    const double       alpha    = prm.local_damping;
+    const double       motion   = prm.newmark_gamma + 0.5;
+    const unsigned int n_fields = nodes.n_fields;
+    double             sum      = 0;
+    for (unsigned int n = 0; n < nodes.n_owned_slots() / n_fields; ++n)
+      {
+        Tensor<1, dim> node_force;
+        for (unsigned int f = 0; f < n_fields; ++f)
+          {
+            const unsigned int i   = nodes.slot_of(n, f);
+            const double      *vel = u + n_velocities * i;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double v_old_d = vel[v_old + d];
+                const double v_new_d =
+                  v_old_d + (vel[v_new + d] - v_old_d) / motion;
+                const double f_d = -alpha *
+                                   std::abs(g[n_sums * i + force + d]) *
+                                   ((v_old_d > 0) - (v_old_d < 0));
+                node_force[d] +=
+                  vel[node_mass] * ((1 + c_dt) * v_new_d - v_old_d) / dt - f_d;
+              }
+          }
+        sum += node_force.norm();
+      }
+    return sum;
   }
 
 

@@ -112,21 +112,27 @@ namespace mpm
                           "their peak to their residual values as the "
                           "equivalent plastic strain grows from 0 to "
                           "'residual plastic strain'.");
+        // The residual values default to the peak ones, so that a scene
+        // softens only what it names (a friction angle falling to 0 by
+        // default turned every softening slope into a fluid).
         prm.declare_entry("residual cohesion",
-                          "0",
+                          "peak",
                           Patterns::Anything(),
                           "Softening: residual cohesion in Pa, in [0, "
-                          "cohesion].");
+                          "cohesion], or 'peak' for the cohesion.");
         prm.declare_entry("residual friction angle",
-                          "0",
+                          "peak",
                           Patterns::Anything(),
                           "Softening: residual friction angle in degrees, in "
-                          "[0, friction angle].");
+                          "[0, friction angle], or 'peak' for the friction "
+                          "angle.");
         prm.declare_entry("residual dilation angle",
-                          "0",
+                          "peak",
                           Patterns::Anything(),
                           "Softening: residual dilation angle in degrees, in "
-                          "[0, residual friction angle].");
+                          "[0, residual friction angle], or 'peak' for the "
+                          "smaller of the dilation angle and the residual "
+                          "friction angle.");
         prm.declare_entry("residual plastic strain",
                           "0.1",
                           Patterns::Anything(),
@@ -147,17 +153,23 @@ namespace mpm
         residual  = peak;
         if (softening)
           {
-            residual.c =
-              Parse::bounded_double(prm, path, "residual cohesion", 0, peak.c);
+            // 'peak' (the default) keeps the peak value.
+            const auto residual_or_peak = [&](const char  *name,
+                                              const double peak_value,
+                                              const double upper) {
+              return prm.get(name) == "peak"
+                       ? std::min(peak_value, upper)
+                       : Parse::bounded_double(prm, path, name, 0, upper);
+            };
+            const double phi_peak = friction_angle_degrees(prm, path);
+            residual.c = residual_or_peak("residual cohesion", peak.c, peak.c);
             const double phi =
-              Parse::bounded_double(prm,
-                                    path,
-                                    "residual friction angle",
-                                    0,
-                                    friction_angle_degrees(prm, path));
+              residual_or_peak("residual friction angle", phi_peak, phi_peak);
             residual.phi    = radians(phi);
-            residual.psi    = radians(Parse::bounded_double(
-              prm, path, "residual dilation angle", 0, phi));
+            residual.psi    = radians(residual_or_peak(
+              "residual dilation angle",
+              Parse::bounded_double(prm, path, "dilation angle", 0, phi_peak),
+              phi));
             residual_strain = Parse::bounded_double(
               prm, path, "residual plastic strain", 0, 1e300, true);
           }

@@ -74,7 +74,24 @@ namespace mpm
                       const double       dt              = 0,
                       const bool         for_strain_rate = false);
 
+    /// Measure the out-of-balance force at each force update (a stage that
+    /// ends at equilibrium); off, nothing is computed.
+    bool measure_out_of_balance = false;
+    /// This rank's sum over its owned nodes of the magnitude of the
+    /// out-of-balance force at the last force update (see
+    /// out_of_balance_force()).
+    double local_out_of_balance = 0;
+
   private:
+    /// The out-of-balance force of every owned node after the force update
+    /// to @p dt: the force the body's stresses and loads put on the node,
+    /// less what the supports (faces, walls, the velocity region) and
+    /// contact with other bodies take, without the damping (which slows
+    /// the motion but balances nothing). Summed over the node's fields,
+    /// so that forces between two bodies cancel; the magnitudes summed
+    /// over the nodes.
+    double
+    out_of_balance_force(const double dt) const;
     /// Multi-body contact and rigid bodies at every owned node where a
     /// body has a field of its own; @p dt > 0 at the force update, where
     /// the rigid bodies' reactions are measured and where the fields press
