@@ -543,10 +543,13 @@ namespace mpm
   {
     const StageParameters &s = stage.current();
     RunEnding              ending;
-    ending.stage_ended = true;
-    ending.equilibrium = steps_in_balance >= balanced_steps;
+    ending.stage_ended    = true;
+    ending.equilibrium    = steps_in_balance >= balanced_steps;
+    ending.time           = integrator->time();
+    ending.out_of_balance = out_of_balance;
+    // A trial of the strength reduction that fails is its answer.
     if (s.end == StageEnd::equilibrium && !ending.equilibrium &&
-        s.stop_if_not_reached)
+        s.stop_if_not_reached && !s.strength_reduction)
       {
         std::ostringstream message;
         message << "stage " << stage.index << " ('" << s.path
@@ -659,9 +662,14 @@ namespace mpm
         if (path.rfind(prefix, 0) == 0)
           return true;
       if (stage.entering)
-        for (const auto &change : stage.current().changes)
-          if (change.first == path)
-            return true;
+        {
+          for (const auto &change : stage.current().changes)
+            if (change.first == path)
+              return true;
+          for (const auto &other : stage.other_changes)
+            if (other == path)
+              return true;
+        }
       return false;
     };
     // A checkpoint of an older version holds no entries: nothing to
@@ -853,6 +861,9 @@ namespace mpm
       pcout << " " << name << "[" << n << "]";
     pcout << std::endl;
     warn_of_volumetric_locking();
+    for (const auto &body : body_parameters)
+      if (const std::string w = body.sparse_points_warning(); !w.empty())
+        pcout << "  warning: " << w << std::endl;
     warn_of_pic_viscosity();
     warn_of_apic_at_rough_faces();
   }

@@ -56,6 +56,7 @@ def run(exe, theta_deg, mu, end_time, extra):
         r = run_scene(exe, "contact/inclined_plane.prm", [
             "-s", "Bodies/Body 0/shape=mesh",
             "-s", "Bodies/Body 0/mesh file=" + mesh,
+            "-s", "Bodies/Body 0/mesh points=Gauss points",
             "-s", "Boundary conditions/Rigid wall 0/point=%.17g, %.17g" %
                   (P0[0] + offset * n[0], P0[1] + offset * n[1]),
             "-s", "Boundary conditions/Rigid wall 0/normal=%.17g, %.17g" % n,

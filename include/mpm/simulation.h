@@ -40,6 +40,10 @@ namespace mpm
     bool equilibrium = false;
     /// The checkpoint the next stage starts from (none after the last).
     std::string checkpoint;
+    /// The time it ended and the out-of-balance force over the weight
+    /// then (0 without a stage that ends at equilibrium).
+    double time           = 0;
+    double out_of_balance = 0;
   };
 
 

@@ -67,6 +67,16 @@ namespace mpm
       "Quadrilaterals, hexahedra and simplices. A point sits at each of the "
       "'particles per cell'^dim Gauss points of a cell, with that point's "
       "share JxW of the cell's volume.");
+    prm.declare_entry(
+      "mesh points",
+      "grid",
+      Patterns::Selection("grid|Gauss points"),
+      "Mesh: where the points go. grid: on the grid's lattice inside the "
+      "mesh's cells, 'particles per cell' per grid cell and direction (the "
+      "body has the grid's resolution whatever the mesh's). Gauss points: "
+      "at the 'particles per cell'^dim Gauss points of each mesh cell, each "
+      "with its share JxW of the cell (the cell's volume exactly; a coarse "
+      "mesh gives few points); needed for 'pressure boundary ids'.");
     prm.declare_entry("mesh material ids",
                       "",
                       Patterns::Anything(),
@@ -393,10 +403,21 @@ namespace mpm
       throw InputError(name + "/mesh file",
                        "",
                        "shape 'mesh' needs the name of a mesh file");
-    const auto     material_ids = id_list(prm, name, "mesh material ids");
-    const auto     loaded_ids   = id_list(prm, name, "pressure boundary ids");
-    MeshSeeds<dim> read         = seeds_from_mesh<dim>(
-      file, material_ids, loaded_ids, particles_per_cell, name);
+    const auto material_ids = id_list(prm, name, "mesh material ids");
+    const auto loaded_ids   = id_list(prm, name, "pressure boundary ids");
+    const bool on_grid      = prm.get("mesh points") == "grid";
+    if (on_grid && !loaded_ids.empty())
+      throw InputError(name + "/pressure boundary ids",
+                       prm.get("pressure boundary ids"),
+                       "needs 'mesh points' = Gauss points (the faces' areas "
+                       "go to the Gauss points of their cells)");
+    Tensor<1, dim> spacing = grid.cell_size();
+    spacing /= particles_per_cell;
+    MeshSeeds<dim> read =
+      on_grid ? lattice_seeds_in_mesh<dim>(
+                  file, material_ids, grid.lower_corner, spacing, name)
+              : seeds_from_mesh<dim>(
+                  file, material_ids, loaded_ids, particles_per_cell, name);
 
     // Sort by grid cell; drop (clip) or refuse the points outside the grid.
     std::vector<unsigned int> order, cells(read.positions.size());
@@ -468,6 +489,31 @@ namespace mpm
     for_each_seed(cell_origin,
                   [&n](const auto &, const auto &, auto, auto) { ++n; });
     return n;
+  }
+
+
+  template <int dim>
+  std::string
+  BodyParameters<dim>::sparse_points_warning() const
+  {
+    if (!mesh_seeds)
+      return "";
+    double volume = 0, cell_volume = 1;
+    for (const double v : mesh_seeds->volumes)
+      volume += v;
+    for (unsigned int d = 0; d < dim; ++d)
+      cell_volume *= grid.cell_size()[d];
+    const double      cells    = volume / cell_volume;
+    const std::size_t n_points = mesh_seeds->positions.size();
+    if (!(n_points < cells))
+      return "";
+    std::ostringstream s;
+    s << name << " has " << n_points << " points for the about "
+      << std::round(cells)
+      << " grid cells its mesh covers (fewer than one per cell: the body is "
+         "coarser than the grid); set its 'mesh points' = grid, or raise "
+         "'particles per cell'";
+    return s.str();
   }
 
 

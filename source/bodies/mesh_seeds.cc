@@ -6,12 +6,16 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
 
+#include <deal.II/base/bounding_box.h>
+
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
 
 #include <mpm/bodies/mesh_seeds.h>
 #include <mpm/parameters.h>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -229,6 +233,111 @@ namespace mpm
   }
 
 
+
+  namespace
+  {
+    /// Does @p x lie in @p cell (up to a relative tolerance on the
+    /// reference coordinates)? Simplices by their barycentric coordinates,
+    /// the other cells through their linear mapping.
+    template <int dim>
+    bool
+    cell_contains(const typename Triangulation<dim>::active_cell_iterator &cell,
+                  const Point<dim>                                        &x)
+    {
+      constexpr double    tolerance = 1e-10;
+      const ReferenceCell kind      = cell->reference_cell();
+      if (kind.is_simplex())
+        {
+          // x = v0 + sum_i lambda_i (v_i - v0).
+          Tensor<2, dim> edges;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int d = 0; d < dim; ++d)
+              edges[d][i] = cell->vertex(i + 1)[d] - cell->vertex(0)[d];
+          const Tensor<1, dim> lambda = invert(edges) * (x - cell->vertex(0));
+          double               sum    = 0;
+          for (unsigned int i = 0; i < dim; ++i)
+            {
+              if (lambda[i] < -tolerance)
+                return false;
+              sum += lambda[i];
+            }
+          return sum <= 1 + tolerance;
+        }
+      try
+        {
+          const Point<dim> xi = kind.template get_default_linear_mapping<dim>()
+                                  .transform_real_to_unit_cell(cell, x);
+          return kind.contains_point(xi, tolerance);
+        }
+      catch (const typename Mapping<dim>::ExcTransformationFailed &)
+        {
+          return false; // far outside a distorted cell
+        }
+    }
+  } // namespace
+
+
+  template <int dim>
+  MeshSeeds<dim>
+  lattice_seeds_in_mesh(const std::string                  &file,
+                        const std::set<types::material_id> &material_ids,
+                        const Point<dim>                   &origin,
+                        const Tensor<1, dim>               &spacing,
+                        const std::string                  &path)
+  {
+    Triangulation<dim> mesh;
+    read_mesh(file, path, mesh);
+    double volume = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      volume *= spacing[d];
+    // A lattice node on a face shared by two cells is taken once.
+    std::set<std::array<long, dim>> taken;
+    MeshSeeds<dim>                  seeds;
+    for (const auto &cell : mesh.active_cell_iterators())
+      {
+        if (!material_ids.empty() &&
+            material_ids.count(cell->material_id()) == 0)
+          continue;
+        const BoundingBox<dim> box = cell->bounding_box();
+        std::array<long, dim>  first, last;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const auto [low, high] =
+              std::make_pair(box.get_boundary_points().first[d],
+                             box.get_boundary_points().second[d]);
+            first[d] = std::ceil((low - origin[d]) / spacing[d] - 0.5);
+            last[d]  = std::floor((high - origin[d]) / spacing[d] - 0.5);
+          }
+        bool empty = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          empty |= first[d] > last[d];
+        if (empty)
+          continue; // a cell between two lattice nodes
+        std::array<long, dim> index = first;
+        while (index[dim - 1] <= last[dim - 1])
+          {
+            Point<dim> x;
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = origin[d] + (index[d] + 0.5) * spacing[d];
+            if (taken.count(index) == 0 && cell_contains<dim>(cell, x))
+              {
+                taken.insert(index);
+                seeds.positions.push_back(x);
+                seeds.volumes.push_back(volume);
+              }
+            // The next lattice node of the box, first index fastest.
+            unsigned int d = 0;
+            while (d < dim && ++index[d] > last[d])
+              {
+                if (d + 1 < dim)
+                  index[d] = first[d];
+                ++d;
+              }
+          }
+      }
+    return seeds;
+  }
+
   template MeshSeeds<1>
   seeds_from_mesh<1>(const std::string &,
                      const std::set<types::material_id> &,
@@ -247,4 +356,22 @@ namespace mpm
                      const std::set<types::boundary_id> &,
                      const unsigned int,
                      const std::string &);
+  template MeshSeeds<1>
+  lattice_seeds_in_mesh<1>(const std::string &,
+                           const std::set<types::material_id> &,
+                           const Point<1> &,
+                           const Tensor<1, 1> &,
+                           const std::string &);
+  template MeshSeeds<2>
+  lattice_seeds_in_mesh<2>(const std::string &,
+                           const std::set<types::material_id> &,
+                           const Point<2> &,
+                           const Tensor<1, 2> &,
+                           const std::string &);
+  template MeshSeeds<3>
+  lattice_seeds_in_mesh<3>(const std::string &,
+                           const std::set<types::material_id> &,
+                           const Point<3> &,
+                           const Tensor<1, 3> &,
+                           const std::string &);
 } // namespace mpm

@@ -138,6 +138,30 @@ namespace mpm
                           "true: the displacement output counts from the "
                           "positions at the stage's start.");
         prm.declare_entry("changes", "", Patterns::Anything(), changes_help);
+        prm.declare_entry(
+          "strength reduction",
+          "false",
+          Patterns::Bool(),
+          "true: the stage finds the factor of safety F (Griffiths and Lane "
+          "1999). It runs from the end of the stage before (which must end "
+          "in equilibrium) again and again, each time with the cohesion "
+          "and tan(friction angle) of every frictional body divided by a "
+          "factor (the dilation angle and the residual values alike), to "
+          "equilibrium (the factor holds) or to its duration (the slope "
+          "fails), and bisects between 1 and 'largest factor' until the "
+          "bracket is narrower than 'factor tolerance'. Each trial writes "
+          "to '<output directory>/strength_reduction/F_<factor>', and "
+          "factor_of_safety.csv lists them. Only the last stage, with end = "
+          "equilibrium; a restart runs the search again.");
+        prm.declare_entry("largest factor",
+                          "4",
+                          Patterns::Anything(),
+                          "Strength reduction: the largest factor tried, > 1.");
+        prm.declare_entry("factor tolerance",
+                          "0.01",
+                          Patterns::Anything(),
+                          "Strength reduction: the width of the final "
+                          "bracket, in (0, 1).");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -161,6 +185,11 @@ namespace mpm
     stop_if_not_reached = prm.get("if not in equilibrium") == "stop";
     reset_displacements = prm.get_bool("reset displacements");
     changes = split_changes(prm.get("changes"), path + "/changes", declared);
+    strength_reduction = prm.get_bool("strength reduction");
+    largest_factor =
+      Parse::bounded_double(prm, path, "largest factor", 1, 100, true);
+    factor_tolerance =
+      Parse::bounded_double(prm, path, "factor tolerance", 0, 1, true, true);
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -177,7 +206,24 @@ namespace mpm
       return stages;
     const auto declared = Parse::entries(prm);
     for (unsigned int k = 0; k < n; ++k)
-      stages[k].parse_parameters(prm, k, declared);
+      {
+        stages[k].parse_parameters(prm, k, declared);
+        if (!stages[k].strength_reduction)
+          continue;
+        const std::string name = stages[k].path + "/strength reduction";
+        if (k == 0 || k + 1 < n)
+          throw InputError(name,
+                           "true",
+                           "only the last stage, after one that brings the "
+                           "bodies to equilibrium, can search the factor of "
+                           "safety");
+        if (stages[k].end != StageEnd::equilibrium)
+          throw InputError(name,
+                           "true",
+                           "needs '" + stages[k].path +
+                             "/end' = equilibrium: a factor holds if its "
+                             "trial reaches equilibrium");
+      }
     return stages;
   }
 

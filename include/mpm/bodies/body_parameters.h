@@ -101,6 +101,11 @@ namespace mpm
     std::string                    material_name;
     std::shared_ptr<Material<dim>> material;
 
+    /// A mesh body with fewer points than the grid cells it covers (a
+    /// coarse mesh with Gauss points): the warning to print; empty if not.
+    std::string
+    sparse_points_warning() const;
+
     /// Does the body start displaced from its shape?
     bool
     is_displaced() const;

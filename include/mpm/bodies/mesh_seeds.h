@@ -44,6 +44,23 @@ namespace mpm
                   const std::set<types::boundary_id> &loaded_boundary_ids,
                   const unsigned int                  n,
                   const std::string                  &path);
+
+  /**
+   * Read the mesh @p file as seeds_from_mesh() does, and put a point at
+   * every node of the lattice of spacing @p spacing (offset by half a
+   * spacing from @p origin: the grid's cells with n points per direction,
+   * where the shapes put theirs) that lies in a cell of the mesh with the
+   * material ids asked for, with the lattice's volume. The body then has
+   * the grid's resolution whatever the mesh's; its boundary is the mesh's
+   * to within half a spacing.
+   */
+  template <int dim>
+  MeshSeeds<dim>
+  lattice_seeds_in_mesh(const std::string                  &file,
+                        const std::set<types::material_id> &material_ids,
+                        const Point<dim>                   &origin,
+                        const Tensor<1, dim>               &spacing,
+                        const std::string                  &path);
 } // namespace mpm
 
 #endif

@@ -54,6 +54,12 @@ namespace mpm
     /// "path = value" pairs applied to the scene when the stage starts, on
     /// top of the previous stages' changes.
     std::vector<std::pair<std::string, std::string>> changes;
+    /// The stage searches the factor of safety: trials from the previous
+    /// stage's end with the strength divided by a factor, bisected
+    /// between 1 and 'largest factor' to a bracket of 'factor tolerance'.
+    bool   strength_reduction;
+    double largest_factor;
+    double factor_tolerance;
   };
 
   /// Consecutive steps below the tolerance that make equilibrium: one step
@@ -79,6 +85,9 @@ namespace mpm
     /// The run starts the stage from the previous one's end (not a restart
     /// within it).
     bool entering = false;
+    /// Entries the run changes besides the stage's own changes (a trial of
+    /// the strength reduction: the reduced strengths).
+    std::vector<std::string> other_changes = {};
 
     bool
     staged() const
