@@ -19,7 +19,7 @@ namespace mpm
 
 
   template <int dim>
-  std::array<double, 2>
+  std::array<double, 3>
   EnergyGuard<dim>::check(const Statistics<dim> &s,
                           const double           work,
                           const double           absolute_work,
@@ -41,11 +41,11 @@ namespace mpm
     largest_release     = std::max(largest_release, initial_gravity - gravity);
     const double put_in = initial_motion + largest_release + absolute_work;
     const double gain   = energy - initial_energy - work;
-    const double residual =
-      with_residual ? gain - s.strain_energy + initial_strain + stress_work
-                    : 0.;
+    const double dissipation =
+      with_residual ? stress_work - s.strain_energy + initial_strain : 0.;
+    const double residual = with_residual ? gain + dissipation : 0.;
     if (bound == 0)
-      return {{put_in, residual}};
+      return {{put_in, residual, dissipation}};
     // Round-off of the sums (the gravitational energy is measured from the
     // origin, and can be far larger than any change of it).
     const double noise =
@@ -83,7 +83,7 @@ namespace mpm
              ": the numerics create energy, which plasticity hides in the "
              "total energy");
       }
-    return {{put_in, residual}};
+    return {{put_in, residual, dissipation}};
   }
 
 

@@ -196,14 +196,18 @@ namespace mpm
       "energy residual",
       "false",
       Patterns::Bool(),
-      "Add the column energy_residual to statistics.csv: the energy "
-      "balance of the bodies with the work their stresses absorbed (the "
-      "stress power, summed over the steps) in place of their strain "
-      "energy, over the energy put in. Where plasticity dissipates, the "
-      "total energy can hide energy the numerics made; this balance "
-      "cannot (> 0: made, < 0: lost to the transfer, walls, friction or "
-      "damping). The energy growth bound then applies to it too. Costs "
-      "two passes over the points per step.");
+      "Add the energy balance's columns to statistics.csv: "
+      "external_work W (J: loads, body forces, rigid walls and bodies, "
+      "velocity regions, the virtual fluid), dissipation D (J: the work "
+      "the stresses absorbed, the stress power summed over the steps, less "
+      "the strain energy they store: plastic, viscous and damage "
+      "dissipation) and energy_residual R over the energy put in, so that "
+      "the total energy changes by E - E(0) = W - D + R. R is the "
+      "numerics' share, which plasticity cannot hide as it hides it in the "
+      "total energy (> 0: made; < 0: lost to the transfer, and to the grid "
+      "faces' constraints and friction, local damping and absorbing faces, "
+      "which it also holds). The energy growth bound then applies to R "
+      "too. Costs two passes over the points per step.");
     prm.declare_entry("small mass fraction",
                       "0.25",
                       Patterns::Anything(),

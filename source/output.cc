@@ -5,6 +5,7 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include <mpm/materials/strain_measures.h>
 #include <mpm/output.h>
 #include <mpm/parameters.h>
 #include <mpm/point_vtu_writer.h>
@@ -116,6 +117,61 @@ namespace mpm
       });
     }
 
+    /**
+     * The maker of a symmetric tensor field computed by @p value from a
+     * point's properties and the layout. deal.II's HDF5 filter writes a
+     * field of more than 3 components as a vector of 3 (measured: the 2D
+     * stress tensor came out as 3 columns), so in HDF5 the tensor goes as
+     * its independent components, name_xx, name_yy, name_xy, ...
+     */
+    template <int dim, typename Value>
+    FieldMaker<dim>
+    symmetric_tensor_field(const char *name, const Value value)
+    {
+      return [name, value](const FieldContext<dim>      &c,
+                           std::vector<PointField<dim>> &out) {
+        const FieldLayout &l = c.l;
+        if (!c.hdf5)
+          {
+            out.push_back({name,
+                           dim * dim,
+                           tensor,
+                           [&l, value](const PointIterator<dim> &p, double *v) {
+                             const SymmetricTensor<2, dim> t =
+                               value(p->get_properties().data(), l);
+                             for (unsigned int i = 0; i < dim; ++i)
+                               for (unsigned int j = 0; j < dim; ++j)
+                                 v[i * dim + j] = t[i][j];
+                           }});
+            return;
+          }
+        const std::vector<std::pair<unsigned int, unsigned int>> components =
+          dim == 1 ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0}}
+          : dim == 2
+            ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0},
+                                                                 {1, 1},
+                                                                 {0, 1}}
+            : std::vector<std::pair<unsigned int, unsigned int>>{
+                {0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+        for (const auto &[i, j] : components)
+          out.push_back(
+            scalar_field<dim>(std::string(name) + "_" + "xyz"[i] + "xyz"[j],
+                              [&l, value, i = i, j = j](const double *q) {
+                                return value(q, l)[i][j];
+                              }));
+      };
+    }
+
+
+    /// The log strain of a point's deformation gradient (see log_strain()).
+    template <int dim>
+    SymmetricTensor<2, 3>
+    point_log_strain(const double *q, const FieldLayout &l)
+    {
+      return log_strain<dim>(Fields::tensor<dim>(q + l.deformation_gradient));
+    }
+
+
     /// One point field of 'Output/fields': its name there, what the help
     /// text says of it, whether the default list has it, and the arrays it
     /// adds to the particle files.
@@ -166,41 +222,11 @@ namespace mpm
         {"stress",
          "",
          true,
-         [](const F &c, P &out) {
-           const FieldLayout &l = c.l;
-           // deal.II's HDF5 filter writes a field of more than 3
-           // components as a vector of 3 (measured: the 2D stress tensor
-           // came out as 3 columns), so in HDF5 the stress goes as its
-           // independent components.
-           if (!c.hdf5)
-             {
-               out.push_back(
-                 {"stress", dim * dim, tensor, [&l](const It &p, double *v) {
-                    const auto s = Fields::symmetric<dim>(
-                      p->get_properties().data() + l.stress);
-                    for (unsigned int i = 0; i < dim; ++i)
-                      for (unsigned int j = 0; j < dim; ++j)
-                        v[i * dim + j] = s[i][j];
-                  }});
-               return;
-             }
-           const std::vector<std::pair<unsigned int, unsigned int>> components =
-             dim == 1
-               ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0}}
-             : dim == 2
-               ? std::vector<std::pair<unsigned int, unsigned int>>{{0, 0},
-                                                                    {1, 1},
-                                                                    {0, 1}}
-               : std::vector<std::pair<unsigned int, unsigned int>>{
-                   {0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
-           for (const auto &[i, j] : components)
-             out.push_back(
-               scalar_field<dim>(std::string("stress_") + "xyz"[i] + "xyz"[j],
-                                 [&l, i = i, j = j](const double *q) {
-                                   return Fields::symmetric<dim>(
-                                     q + l.stress)[i][j];
-                                 }));
-         }},
+         symmetric_tensor_field<dim>("stress",
+                                     [](const double *q, const FieldLayout &l) {
+                                       return Fields::symmetric<dim>(q +
+                                                                     l.stress);
+                                     })},
         {"J",
          "",
          true,
@@ -244,7 +270,33 @@ namespace mpm
                                  const SymmetricTensor<2, 3> s =
                                    deviator(sigma);
                                  return std::sqrt(1.5 * (s * s));
-                               })}};
+                               })},
+        {"strain",
+         "log strain 1/2 ln(F F^T) from the initial configuration, "
+         "in-plane components in 2D; a stage's 'reset displacements' "
+         "leaves it",
+         false,
+         symmetric_tensor_field<dim>("strain",
+                                     [](const double *q, const FieldLayout &l) {
+                                       const SymmetricTensor<2, 3> e =
+                                         point_log_strain<dim>(q, l);
+                                       SymmetricTensor<2, dim> t;
+                                       for (unsigned int i = 0; i < dim; ++i)
+                                         for (unsigned int j = i; j < dim; ++j)
+                                           t[i][j] = e[i][j];
+                                       return t;
+                                     })},
+        {"deviatoric strain",
+         "sqrt(2/3 e:e) of the log strain's deviator e: where the "
+         "ground shears, the failure surface",
+         false,
+         one_field<dim>([](const F &c) {
+           return scalar_field<dim>("deviatoric_strain",
+                                    [&l = c.l](const double *q) {
+                                      return deviatoric_strain(
+                                        point_log_strain<dim>(q, l));
+                                    });
+         })}};
       return table;
     }
 
@@ -289,8 +341,10 @@ namespace mpm
       Patterns::MultipleSelection(point_field_names("|", false, false)),
       "Particle fields written to VTU, any of: " +
         point_field_names(", ", false, true) +
-        ". 'displacement' makes every point store its initial position; "
-        "the last two are computed at output only.");
+        ". 'displacement' makes every point store its initial position, "
+        "'strain' and 'deviatoric strain' its deformation gradient; "
+        "pressure, von Mises stress and the strains are computed at output "
+        "only.");
     prm.declare_entry(
       "particle format",
       "VTU",

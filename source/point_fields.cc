@@ -10,14 +10,16 @@ namespace mpm
   point_fields_needed(const IntegratorParameters<dim>             &integrator,
                       const std::vector<BodyParameters<dim>>      &bodies,
                       const std::vector<RigidWallParameters<dim>> &walls,
-                      const bool initial_position)
+                      const bool initial_position,
+                      const bool deformation_gradient)
   {
     FieldRequests fields;
     fields.initial_position = initial_position;
     for (const auto &body : bodies)
       fields.initial_position =
         fields.initial_position || body.body_force || body.is_displaced();
-    fields.deformation_gradient = integrator.basis == BasisType::cpgimp;
+    fields.deformation_gradient =
+      deformation_gradient || integrator.basis == BasisType::cpgimp;
     with_transfer(integrator.transfer, [&](auto transfer) {
       fields.affine_velocity = decltype(transfer)::stores_affine_velocity;
     });
@@ -56,6 +58,7 @@ namespace mpm
     const IntegratorParameters<dim> &,                     \
     const std::vector<BodyParameters<dim>> &,              \
     const std::vector<RigidWallParameters<dim>> &,         \
+    const bool,                                            \
     const bool);                                           \
   template std::vector<unsigned int> wall_slip_slots<dim>( \
     const std::vector<RigidWallParameters<dim>> &);

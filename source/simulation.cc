@@ -262,7 +262,9 @@ namespace mpm
                           rigid_wall_parameters,
                           output_parameters.writes("displacement") ||
                             Verification<dim>::needs_initial_position(
-                              verification_parameters));
+                              verification_parameters),
+                          output_parameters.writes("strain") ||
+                            output_parameters.writes("deviatoric strain"));
     if (stage.staged())
       for (const auto &s : *stage.stages)
         fields.displacement_origin |= s.reset_displacements;
@@ -363,7 +365,9 @@ namespace mpm
       for (const std::string c : {"macro_steps", "macro_mismatch"})
         columns.push_back(c);
     if (integrator_parameters.energy_residual)
-      columns.push_back("energy_residual");
+      for (const std::string c :
+           {"external_work", "dissipation", "energy_residual"})
+        columns.push_back(c);
     if (stage.staged())
       columns.push_back("stage");
     if (stage.any_equilibrium())
@@ -788,10 +792,12 @@ namespace mpm
     stop_if_not_finite(s, extra);
     const auto [work, absolute_work, absorbed] =
       integrator->work_account().totals(comm);
-    const auto [put_in, residual] =
+    const auto [put_in, residual, dissipation] =
       energy_guard->check(s, work, absolute_work, absorbed, integrator->time());
     if (integrator_parameters.energy_residual)
-      extra.push_back(put_in > 0 ? residual / put_in : 0.);
+      for (const double value :
+           {work, dissipation, put_in > 0 ? residual / put_in : 0.})
+        extra.push_back(value);
     if (stage.staged())
       extra.push_back(stage.index);
     if (stage.any_equilibrium())

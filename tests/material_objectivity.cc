@@ -16,6 +16,7 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <mpm/materials/material.h>
+#include <mpm/materials/strain_measures.h>
 
 #include <cmath>
 #include <iostream>
@@ -150,6 +151,43 @@ main()
               << error << ", stress of a rigid rotation: " << rigid
               << std::endl;
     ok = ok && error < 1e-13 && rigid < 1e-10;
+  }
+
+  // The output's log strain (issue 33): for F = R U with U = diag(2, 1/2)
+  // it is R diag(ln 2, -ln 2) R^T (plane strain: zz = 0), a rigid rotation
+  // has none, and its equivalent deviatoric strain is that of the
+  // principal strains (ln 2, -ln 2, 0): sqrt(2/3 * 2 ln^2 2) = 2 ln 2 / sqrt 3.
+  {
+    Tensor<2, 2> U;
+    U[0][0]                 = 2.;
+    U[1][1]                 = 0.5;
+    const Tensor<2, 2>    R = rotation(0.7);
+    SymmetricTensor<2, 3> e = log_strain<2>(R * U);
+    Tensor<2, 2>          logU;
+    logU[0][0]                  = std::log(2.);
+    logU[1][1]                  = -std::log(2.);
+    const Tensor<2, 2> expected = R * logU * transpose(R);
+    double             error    = std::abs(e[2][2]);
+    for (unsigned int i = 0; i < 2; ++i)
+      for (unsigned int j = 0; j < 2; ++j)
+        error += std::abs(e[i][j] - expected[i][j]);
+    const double rigid = log_strain<2>(R).norm();
+    const double deviatoric_error =
+      std::abs(deviatoric_strain(e) - 2 * std::log(2.) / std::sqrt(3.));
+    // 3D: a stretch along a tilted axis, F = I + (lambda - 1) n n.
+    Tensor<1, 3> n({1., 2., 2.});
+    n /= n.norm();
+    const Tensor<2, 3> F3 =
+      unit_symmetric_tensor<3>() + 2. * outer_product(n, n);
+    const SymmetricTensor<2, 3> e3 = log_strain<3>(F3);
+    const double                error_3d =
+      (Tensor<2, 3>(e3) - std::log(3.) * outer_product(n, n)).norm();
+    std::cout << "log strain of R U: error " << error << ", of a rotation "
+              << rigid << ", deviatoric strain error " << deviatoric_error
+              << ", 3D stretch along (1, 2, 2)/3: error " << error_3d
+              << std::endl;
+    ok = ok && error < 1e-14 && rigid < 1e-14 && deviatoric_error < 1e-14 &&
+         error_3d < 1e-14;
   }
 
   std::cout << (ok ? "passed" : "FAILED") << std::endl;

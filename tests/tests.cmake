@@ -29,15 +29,15 @@ mpm_test(block_settling_h32_unguarded PRM block_settling.prm EXIT 2
 #    for each update scheme.
 mpm_test(two_disks)
 mpm_test(two_disks_usf PRM two_disks.prm
-  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08")
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy change bound=0.08")
 mpm_test(two_disks_musl PRM two_disks.prm
-  ARGS -s "Simulation/update scheme=MUSL" -s "Verification/energy drift bound=0.1")
+  ARGS -s "Simulation/update scheme=MUSL" -s "Verification/energy change bound=0.1")
 
 # 4. The same scene on 2 MPI ranks gives the 1-rank statistics.
 mpm_test(two_disks_mpi2 PRM two_disks.prm NP 2 REFERENCE two_disks.output RELTOL 1e-7)
 mpm_test(block_3d_mpi2 PRM block_3d.prm NP 2 REFERENCE block_3d.output RELTOL 1e-7)
 mpm_test(two_disks_usf_mpi2 PRM two_disks.prm NP 2 REFERENCE two_disks_usf.output RELTOL 1e-7
-  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08")
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy change bound=0.08")
 
 # 4b. Tiles ('Grid/cells per tile', the T^dim grid cells deal.II stores as
 #     one cell) change where the points are stored, not the answer: 1, 2
@@ -174,14 +174,14 @@ foreach(case "ugimp;uGIMP;0.1" "cpgimp;cpGIMP;0.1"
   endforeach()
   mpm_test(two_disks_${tag} PRM two_disks.prm
     ARGS -s "Simulation/basis=${basis}"
-         -s "Verification/energy drift bound=${energy_bound}")
+         -s "Verification/energy change bound=${energy_bound}")
 endforeach()
 #    Stencils that reach the neighbouring cells across ranks: 2 ranks give
 #    the 1-rank history (reviewed references), in 2D and 3D.
 mpm_test(two_disks_qbs_mpi2 PRM two_disks.prm NP 2
   REFERENCE two_disks_qbs.output RELTOL 1e-7
   ARGS -s "Simulation/basis=quadratic B-spline"
-       -s "Verification/energy drift bound=0.15")
+       -s "Verification/energy change bound=0.15")
 mpm_test(block_3d_cbs ARGS -s "Simulation/basis=cubic B-spline" PRM block_3d.prm)
 mpm_test(block_3d_cbs_mpi2 PRM block_3d.prm NP 2
   REFERENCE block_3d_cbs.output RELTOL 1e-7
@@ -190,15 +190,15 @@ mpm_test(two_disks_cpgimp_apic_mpi2 PRM two_disks.prm NP 2
   REFERENCE two_disks_cpgimp_apic.output RELTOL 1e-7
   ARGS -s "Simulation/basis=cpGIMP" -s "Simulation/transfer=APIC"
        -s "Simulation/update scheme=MUSL"
-       -s "Verification/energy drift bound=0.15")
+       -s "Verification/energy change bound=0.15")
 #    APIC with every scheme conserves momentum (reviewed history on 1 rank).
 mpm_test(two_disks_cpgimp_apic PRM two_disks.prm
   ARGS -s "Simulation/basis=cpGIMP" -s "Simulation/transfer=APIC"
        -s "Simulation/update scheme=MUSL"
-       -s "Verification/energy drift bound=0.15")
+       -s "Verification/energy change bound=0.15")
 mpm_test(two_disks_linear_apic_usf PRM two_disks.prm
   ARGS -s "Simulation/transfer=APIC" -s "Simulation/update scheme=USF"
-       -s "Verification/energy drift bound=0.15")
+       -s "Verification/energy change bound=0.15")
 #    The linear basis with APIC: a light node's force increment (growing as
 #    1 / mass), or a massless node's absent velocity, no longer enters C_p
 #    with the basis' full-size gradient. With outputs every 0.125 s (each
@@ -211,7 +211,7 @@ mpm_test(two_disks_linear_apic_usf PRM two_disks.prm
 foreach(s USL USF MUSL)
   mpm_test(two_disks_linear_apic_${s}_light_nodes PRM two_disks.prm
     ARGS -s "Simulation/transfer=APIC" -s "Simulation/update scheme=${s}"
-         -s "Output/interval=0.125" -s "Verification/energy drift bound=0"
+         -s "Output/interval=0.125" -s "Verification/energy change bound=0"
          -s "Simulation/energy growth bound=1e-6")
 endforeach()
 #    The rule keeps uniform accelerations: a block falling freely (gravity
@@ -223,11 +223,11 @@ mpm_test(falling_block_linear_apic PRM thrown_block.prm
        -s "Simulation/update scheme=USF" -s "Simulation/gravity=0, -1"
        -s "Bodies/Body 0/initial velocity=0.3"
        -s "Simulation/end time=0.6" -s "Output/interval=0.0625"
-       -s "Verification/momentum drift bound=0")
+       -s "Verification/momentum change bound=0")
 mpm_test(two_disks_linear_apic_USF_light_nodes_mpi2 PRM two_disks.prm NP 2
   REFERENCE two_disks_linear_apic_USF_light_nodes.output RELTOL 1e-7
   ARGS -s "Simulation/transfer=APIC" -s "Simulation/update scheme=USF"
-       -s "Output/interval=0.125" -s "Verification/energy drift bound=0"
+       -s "Output/interval=0.125" -s "Verification/energy change bound=0"
        -s "Simulation/energy growth bound=1e-6")
 #    A body that starts displaced needs a material with a reference state.
 mpm_test(bad_initial_displacement_material PRM block_settling.prm EXIT 1
@@ -339,6 +339,26 @@ mpm_test(bad_tension_cutoff PRM ../benchmarks/plasticity/strip_footing.prm EXIT 
 #    A reviewed history starting with the exact mass; 2 ranks reproduce it.
 mpm_test(mesh_bodies)
 mpm_test(mesh_bodies_mpi2 PRM mesh_bodies.prm NP 2 REFERENCE mesh_bodies.output RELTOL 1e-7)
+#    'mesh points = grid' (issue 33): the same bodies seeded on the grid's
+#    lattice of 2 x 2 points per cell, whatever the mesh's own cells (147
+#    points, mass 3656.25, 0.9 % under the cells' exact 3688.17: the
+#    lattice's counting error at the boundary, half a spacing wide; the
+#    lattice itself is checked against the cells' areas in body_shapes).
+#    The history is reviewed: it falls as the Gauss-point bodies do
+#    (kinetic energy 1828.1 at 0.1 s against 1844.1, in proportion to the
+#    mass) until the floor.
+mpm_test(mesh_bodies_grid PRM mesh_bodies.prm
+  ARGS -s "Bodies/Body 0/mesh points=grid" -s "Bodies/Body 1/mesh points=grid"
+       -s "Bodies/Body 1/particles per cell=2")
+#    Gauss points coarser than the grid are told so, with the remedy.
+mpm_test(mesh_bodies_sparse_warns PRM mesh_bodies.prm
+  ARGS -s "Bodies/Body 0/particles per cell=1" -s "Grid/cells=48"
+       -s "Simulation/end time=0.001"
+  OUTPUT "warning: Bodies/Body 0 has 12 points for the about 248 grid cells its mesh covers .fewer than one per cell: the body is coarser than the grid.; set its 'mesh points' = grid, or raise 'particles per cell'")
+#    A pressure on mesh faces needs the Gauss points the faces belong to.
+mpm_test(bad_mesh_pressure_on_grid PRM ../benchmarks/plasticity/thick_cylinder.prm EXIT 1
+  ARGS -s "Bodies/Body 0/mesh points=grid"
+  ERROR "parameter 'Bodies/Body 0/pressure boundary ids' = '10': needs 'mesh points' = Gauss points")
 mpm_test(bad_mesh_file PRM mesh_bodies.prm EXIT 1
   ARGS -s "Bodies/Body 1/mesh file=meshes/missing.msh"
   ERROR "parameter 'Bodies/Body 1/mesh file' = '.*tests/meshes/missing.msh': cannot be opened for reading")
@@ -525,8 +545,8 @@ foreach(speed 10 100)
          -s "Boundary conditions/Rigid wall 0/normal=1, 0"
          -s "Boundary conditions/Rigid wall 0/velocity=${speed}, 0"
          ${times} -s "Output/body extents=true"
-         -s "Verification/energy drift bound=1e9"
-         -s "Verification/momentum drift bound=1e9")
+         -s "Verification/energy change bound=1e9"
+         -s "Verification/momentum change bound=1e9")
 endforeach()
 #    A grid too small for the arithmetic is an input error naming its
 #    extent (the fuzzer's Taylor bar with 'Grid/upper corner = 1e-308' had
@@ -551,8 +571,8 @@ mpm_test(rigid_walls_pinch PRM two_disks.prm EXIT 2
        -s "Boundary conditions/Rigid wall 1/normal=-1, 0"
        -s "Boundary conditions/Rigid wall 1/velocity=-10, 0"
        -s "Simulation/end time=0.06" -s "Output/interval=0.005"
-       -s "Verification/energy drift bound=1e9"
-       -s "Verification/momentum drift bound=1e9"
+       -s "Verification/energy change bound=1e9"
+       -s "Verification/momentum change bound=1e9"
   ERROR "run stopped: step [0-9]+, t = 0.05[01][0-9]*: material point [0-9]+ of body [01] at \\(0.49[0-9]* [0-9.]+\\) is pinched between rigid walls.*Output up to t = 0.05 "
   FILES particles_00010.pvtu)
 #    So does a rigid body's prescribed speed, before its points have it
@@ -562,8 +582,8 @@ mpm_test(rigid_walls_pinch PRM two_disks.prm EXIT 2
 mpm_test(rigid_body_fast PRM two_disks.prm
   ARGS -s "Bodies/Body 1/rigid velocity=-10"
        -s "Simulation/end time=0.003" -s "Output/interval=0"
-       -s "Verification/energy drift bound=1e9"
-       -s "Verification/momentum drift bound=1e9")
+       -s "Verification/energy change bound=1e9"
+       -s "Verification/momentum change bound=1e9")
 #    A message shows a vector as given, not expanded to its components.
 mpm_test(bad_rigid_velocity_commas PRM two_disks.prm EXIT 1
   ARGS -s "Bodies/Body 1/rigid velocity=-10, -10"
@@ -757,14 +777,14 @@ foreach(scheme MUSL USF)
   string(TOLOWER ${scheme} s)
   set(two_disks_contact_${s} ARGS -s "Contact/bodies=0, 1"
     -s "Simulation/update scheme=${scheme}" -s "Simulation/basis=uGIMP"
-    -s "Verification/energy drift bound=0.15")
+    -s "Verification/energy change bound=0.15")
   mpm_test(two_disks_contact_${s}_history PRM two_disks.prm ${two_disks_contact_${s}})
   mpm_test(two_disks_contact_${s}_mpi2 PRM two_disks.prm NP 2
     REFERENCE two_disks_contact_${s}_history.output RELTOL 1e-7
     ${two_disks_contact_${s}})
 endforeach()
 set(two_disks_contact ARGS -s "Contact/bodies=0, 1"
-  -s "Verification/energy drift bound=0.15")
+  -s "Verification/energy change bound=0.15")
 mpm_test(two_disks_contact PRM two_disks.prm ${two_disks_contact})
 mpm_test(two_disks_contact_mpi2 PRM two_disks.prm NP 2
   REFERENCE two_disks_contact.output RELTOL 1e-7 ${two_disks_contact})
@@ -776,7 +796,7 @@ mpm_test(two_disks_contact_mpi2 PRM two_disks.prm NP 2
 #     (measured: at most 1.000 of the initial energy, 0.894 at the end).
 mpm_test(two_disks_contact_apic_linear PRM two_disks.prm
   ARGS -s "Contact/bodies=0, 1" -s "Simulation/transfer=APIC"
-       -s "Output/interval=0.05" -s "Verification/energy drift bound=0"
+       -s "Output/interval=0.05" -s "Verification/energy change bound=0"
        -s "Simulation/energy growth bound=0.01")
 #     A disk on a rigid incline: frictionless it slides at g sin(theta)
 #     (measured 3e-6), at mu = 0.1 at g (sin - mu cos) (1.4e-4); with
@@ -971,7 +991,7 @@ if(CMAKE_BUILD_TYPE STREQUAL "Debug")
   set(restart_cells 40)
 endif()
 set(restart_scene --exe $<TARGET_FILE:dealii-mpm> --scene ${CMAKE_CURRENT_SOURCE_DIR}/two_disks.prm
-  --end-time 3 -s "Grid/cells=${restart_cells}" -s "Verification/energy drift bound=0")
+  --end-time 3 -s "Grid/cells=${restart_cells}" -s "Verification/energy change bound=0")
 #     A restart continues its checkpoint's physics (issue 32, class 6): a
 #     changed material constant, an end time already passed and output
 #     fields that need other point data are refused, naming what differs;
@@ -1093,7 +1113,7 @@ add_test(NAME two_disks_energy_apic
 #     suite runs with the guard on (the default bound 0.25), two with a
 #     documented bound of their own.
 mpm_test(energy_guard PRM two_disks.prm EXIT 2
-  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0"
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy change bound=0"
        -s "Simulation/energy growth bound=0.005"
   ERROR "run stopped: t = 2.25: the energy of the bodies grew by [0-9.]+ J beyond the work done on them .energy 2.6 -> [0-9.]+ J, work 0 J., 0.005[0-9]+ of the energy put in .2.6 J., more than 'Simulation/energy growth bound' = 0.005. the run is unstable .the fastest point: material point [0-9]+ of body [01] at .*Output up to t = 2 "
   FILES particles_00008.pvtu)
@@ -1111,7 +1131,7 @@ add_test(NAME energy_residual
 #     runs to the end on the total energy, and stops at t = 1.75 on the
 #     residual (0.0067 of the energy put in).
 set(plastic_disks
-  -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0"
+  -s "Simulation/update scheme=USF" -s "Verification/energy change bound=0"
   -s "Simulation/energy growth bound=0.005" -s "Simulation/end time=2.5")
 foreach(b 0 1)
   list(APPEND plastic_disks -s "Bodies/Body ${b}/material=von Mises"
@@ -1128,11 +1148,11 @@ mpm_test(energy_guard_plastic_residual PRM two_disks.prm EXIT 2
 #     Asking for the residual changes no number of the run (the other
 #     columns are two_disks_usf's, bit for bit), on 1 and 2 ranks.
 mpm_test(two_disks_usf_residual PRM two_disks.prm
-  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08"
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy change bound=0.08"
        -s "Simulation/energy residual=true")
 mpm_test(two_disks_usf_residual_mpi2 PRM two_disks.prm NP 2
   REFERENCE two_disks_usf_residual.output RELTOL 1e-7
-  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy drift bound=0.08"
+  ARGS -s "Simulation/update scheme=USF" -s "Verification/energy change bound=0.08"
        -s "Simulation/energy residual=true")
 #     The CFL numbers allowed are those stable with every basis on the
 #     sweep of benchmarks/verification/cfl_range.py: up to 0.8 (the linear
@@ -1355,3 +1375,22 @@ mpm_test(bad_stage_section_missing PRM ${slope_prm} EXIT 1
 mpm_test(bad_stage_not_in_equilibrium PRM ${slope_prm} EXIT 2
   ARGS -s "Stages/Stage 0/duration=0.2"
   ERROR "stage 0 .'Stages/Stage 0'. did not reach equilibrium within its duration of 0.2 s")
+
+#     Strength reduction (issue 33): the factor of safety of the same slope
+#     at 1 m cells, bisected to 0.02 (duration 30 s per trial). Bishop's
+#     simplified method gives 1.374 (benchmarks/slope/limit_equilibrium.py);
+#     the ladder at 2, 1, 0.5 m cells gives 1.191, 1.363, 1.387
+#     (benchmarks/slope/README.md). Release only (40 s; minutes against
+#     deal.II's debug library, whose build runs the stages above).
+if(NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
+  add_test(NAME slope_factor_of_safety
+    COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/slope/slope.py
+      --exe $<TARGET_FILE:dealii-mpm> --factor-of-safety --ladder "32,12"
+      --tolerance 0.02 --expect 1.32,1.43)
+endif()
+mpm_test(bad_strength_reduction_not_last PRM ${slope_prm} EXIT 1
+  ARGS -s "Stages/Stage 0/strength reduction=true"
+  ERROR "parameter 'Stages/Stage 0/strength reduction' = 'true': only the last stage, after one that brings the bodies to equilibrium, can search the factor of safety")
+mpm_test(bad_strength_reduction_end_time PRM ${slope_prm} EXIT 1
+  ARGS -s "Stages/Stage 1/strength reduction=true"
+  ERROR "parameter 'Stages/Stage 1/strength reduction' = 'true': needs 'Stages/Stage 1/end' = equilibrium")

@@ -43,7 +43,7 @@ SCENES = {
                  lambda rows: 0.5 - (float(rows[-1]["body0_y_min"]) - 1 / 64)),
     "two_disks": ("../tests/two_disks.prm",
                   ["-s", "Contact/bodies=0, 1",
-                   "-s", "Verification/energy drift bound=0"],
+                   "-s", "Verification/energy change bound=0"],
                   lambda rows: ratio(rows, "total_energy")),
     "v_notch": ("contact/v_notch.prm", [],
                 lambda rows: -float(rows[-1]["wall0_force_y"]) /

@@ -38,7 +38,7 @@ def closest_approach(points, bodies):
 
 def run(exe, contact, extra):
     arguments = ["-s", "Output/interval=0.05",
-                 "-s", "Verification/energy drift bound=0"] + extra
+                 "-s", "Verification/energy change bound=0"] + extra
     if contact:
         arguments += ["-s", "Contact/bodies=0, 1"]
     r = run_scene(exe, "../tests/two_disks.prm", arguments, frame="all",

@@ -22,6 +22,7 @@ method, limit_equilibrium.py): 1.374.
 
   python3 benchmarks/slope/slope.py --exe build/dealii-mpm --factor-of-safety
       [--ladder "16,6;32,12;64,24"] [--duration 30] [--tolerance 0.01]
+      [--set "Simulation/transfer=APIC" ...]
 """
 import argparse, csv, glob, os, re, subprocess, sys, tempfile, time
 
@@ -35,7 +36,8 @@ def run(a, out, extra, check=True):
         a.exe, os.path.join(HERE, "slope.prm"),
         "-s", "Output/directory=" + out,
         "-s", "Output/progress interval=1e9",
-        "-s", "Grid/cells=" + a.cells] + extra
+        "-s", "Grid/cells=" + a.cells] + extra + sum(
+            (["-s", x] for x in a.set), [])
     r = subprocess.run(command, stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE, text=True)
     if check and r.returncode != 0:
@@ -154,6 +156,10 @@ def main():
     p.add_argument("--duration", type=float, default=30)
     p.add_argument("--tolerance", type=float, default=0.01)
     p.add_argument("--expect", type=lambda t: [float(x) for x in t.split(",")])
+    p.add_argument("--set", action="append", default=[],
+                   help="'path=value' for the scene, after the script's own "
+                   "(repeatable): the numerical choices the factor of "
+                   "safety must not depend on")
     a = p.parse_args()
     failures = check_stages(a) if a.check_stages else []
     if a.factor_of_safety:

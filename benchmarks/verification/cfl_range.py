@@ -23,8 +23,8 @@ SCENES = {
 }
 BASES = {"linear": "linear", "uGIMP": "uGIMP", "cpGIMP": "cpGIMP",
          "QBS": "quadratic B-spline", "CBS": "cubic B-spline"}
-QUIET = ["-s", "Verification/energy drift bound=0",
-         "-s", "Verification/momentum drift bound=0",
+QUIET = ["-s", "Verification/energy change bound=0",
+         "-s", "Verification/momentum change bound=0",
          "-s", "Verification/error bound=0"]
 
 

@@ -36,7 +36,7 @@ def run(exe, scheme, plastic, extra):
         "-s", "Simulation/end time=3.5",
         "-s", "Simulation/energy residual=true",
         "-s", "Output/interval=0.25",
-        "-s", "Verification/energy drift bound=0"] +
+        "-s", "Verification/energy change bound=0"] +
         (PLASTIC if plastic else []) + extra)
     first, last = r.rows[0], r.rows[-1]
     change = float(last["total_energy"]) / float(first["total_energy"]) - 1

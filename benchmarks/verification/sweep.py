@@ -79,7 +79,7 @@ def vortex(amplitude):
 
 def disks(n):
     # A bound that never fails makes the program print its drift verdict.
-    return ["Grid/cells=%d" % n, "Verification/energy drift bound=1e9"]
+    return ["Grid/cells=%d" % n, "Verification/energy change bound=1e9"]
 
 
 # name: (scene, overrides(n), ladders, h(n), error label in the output,
@@ -151,7 +151,7 @@ PROBLEMS = {
                      "generalized vortex, A = 1 (shear strain up to 6)"),
     "two_disks": ("two_disks.prm", disks,
                   {"coarse": [10, 20], "full": [10, 20, 40, 80]},
-                  lambda n: 1.0 / n, "max energy drift",
+                  lambda n: 1.0 / n, "max energy change",
                   "two disks, max |E(t) - E(0)| / E(0) (no exact field)"),
 }
 

@@ -65,10 +65,13 @@ namespace mpm
      * since the start; collective. With the energy residual, also the
      * balance in which the work the stresses absorbed, @p stress_work
      * (WorkAccount::absorbed), replaces the change of strain
-     * energy. Throws RunError with a diagnosis. Returns E_in(t) and the
-     * energy residual (0 without it), also when the guard is off.
+     * energy. Throws RunError with a diagnosis. Returns E_in(t), the
+     * energy residual R(t) and the dissipation W_sigma(t) - Psi(t) +
+     * Psi(0), the work the stresses absorbed and do not store (plastic,
+     * viscous, damage; both 0 without the residual), also when the guard
+     * is off. Then E(t) - E(0) = W(t) - D(t) + R(t).
      */
-    std::array<double, 2>
+    std::array<double, 3>
     check(const Statistics<dim> &s,
           const double           work,
           const double           absolute_work,

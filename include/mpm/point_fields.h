@@ -14,8 +14,10 @@ namespace mpm
    * The point fields a scene needs beyond those every scene stores: what
    * its transfer, basis and macro step keep per point, what its bodies'
    * loads and body forces read, a stick spring per rigid wall with
-   * friction, and the initial position where @p initial_position (the
-   * output of displacements, a verification) asks for it. The program and
+   * friction, the initial position where @p initial_position (the
+   * output of displacements, a verification) asks for it, and the
+   * deformation gradient where @p deformation_gradient (the output of
+   * strains) does. The program and
    * the unit tests lay out their points with it.
    */
   template <int dim>
@@ -23,7 +25,8 @@ namespace mpm
   point_fields_needed(const IntegratorParameters<dim>             &integrator,
                       const std::vector<BodyParameters<dim>>      &bodies,
                       const std::vector<RigidWallParameters<dim>> &walls = {},
-                      const bool initial_position = false);
+                      const bool initial_position     = false,
+                      const bool deformation_gradient = false);
 
   /// The stick-spring slot of each rigid wall (the walls with friction,
   /// in order; numbers::invalid_unsigned_int for the others).

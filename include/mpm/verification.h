@@ -33,8 +33,8 @@ namespace mpm
     double                        amplitude;    ///< vibrating bar: v0
     double                        top_pressure; ///< self-weight column: p0
     double                        error_bound;  ///< 0: not checked
-    double                        energy_drift_bound;   ///< 0: not checked
-    double                        momentum_drift_bound; ///< 0: not checked
+    double                        energy_change_bound;   ///< 0: not checked
+    double                        momentum_change_bound; ///< 0: not checked
   };
 
 
@@ -95,8 +95,8 @@ namespace mpm
     bool                                 have_initial_state = false;
     double                               initial_energy, initial_momentum_scale;
     Tensor<1, dim>                       initial_momentum;
-    double max_error = 0, last_error = 0, max_energy_drift = 0,
-           max_momentum_drift = 0;
+    double max_error = 0, last_error = 0, max_energy_change = 0,
+           max_momentum_change = 0;
   };
 } // namespace mpm
 

@@ -135,7 +135,7 @@ namespace mpm
     /// One trial of the strength reduction.
     struct Trial
     {
-      double      factor;
+      double      factor         = 1;
       bool        holds          = false;
       double      end_time       = 0;
       double      out_of_balance = 0;
@@ -179,7 +179,8 @@ namespace mpm
         Parse::set_entry(prm, "Checkpoint/interval", "0");
         Parse::set_entry(prm, "Checkpoint/wall interval", "0");
         prepare_trial_directory(run_directory, directory, comm);
-        Trial trial{factor};
+        Trial trial;
+        trial.factor = factor;
         try
           {
             const RunEnding ending = run_one<dim>(prm, comm, from, position);
