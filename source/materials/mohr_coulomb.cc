@@ -173,7 +173,8 @@ namespace mpm
             residual_strain = Parse::bounded_double(
               prm, path, "residual plastic strain", 0, 1e300, true);
           }
-        peak_surface = surface(peak);
+        peak_surface     = surface(peak);
+        residual_surface = surface(strength(residual_strain));
       }
 
       Strength
@@ -247,14 +248,19 @@ namespace mpm
         return surface;
       }
 
-      /// The surface of a point with plastic strain @p eqps: without
-      /// softening the one made at construction (no trigonometry and no
-      /// copy per point), else made in @p buffer.
+      /// The surface of a point with plastic strain @p eqps: at the peak
+      /// (no plastic strain yet, or no softening) and once fully softened
+      /// the ones made at construction, the same numbers without
+      /// trigonometry or a copy per point (issue 33: in a softening slope
+      /// most points have not yielded, and each paid for its surface);
+      /// on the way, made in @p buffer.
       const Surface &
       surface_at(const double eqps, Surface &buffer) const
       {
-        if (!softening)
+        if (!softening || eqps <= 0)
           return peak_surface;
+        if (eqps >= residual_strain)
+          return residual_surface;
         buffer = surface(strength(eqps));
         return buffer;
       }
@@ -368,7 +374,8 @@ namespace mpm
       {
         auto returned = [&](const double x) {
           std::array<double, 3> s = trial;
-          return_sorted(s, surface(strength(eqps + x)));
+          Surface               buffer;
+          return_sorted(s, surface_at(eqps + x, buffer));
           return s;
         };
         auto h = [&](const double x) {
@@ -422,7 +429,7 @@ namespace mpm
 
       const PrincipalElasticity elasticity;
       Strength                  peak, residual;
-      Surface                   peak_surface;
+      Surface                   peak_surface, residual_surface;
       double                    cutoff;
       bool                      softening;
       double                    residual_strain = 1;
