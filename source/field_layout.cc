@@ -2,6 +2,26 @@
 
 namespace mpm
 {
+  FieldRequests &
+  FieldRequests::operator|=(const FieldRequests &other)
+  {
+    initial_position |= other.initial_position;
+    displacement_origin |= other.displacement_origin;
+    deformation_gradient |= other.deformation_gradient;
+    affine_velocity |= other.affine_velocity;
+    elastic_left_cauchy_green |= other.elastic_left_cauchy_green;
+    plastic_strain |= other.plastic_strain;
+    opening |= other.opening;
+    damage |= other.damage;
+    surface_area |= other.surface_area;
+    surface_offset |= other.surface_offset;
+    point_load |= other.point_load;
+    wall_slips = std::max(wall_slips, other.wall_slips);
+    macro_step |= other.macro_step;
+    return *this;
+  }
+
+
   template <int dim>
   FieldLayout
   assemble_layout(const FieldRequests &requests)

@@ -230,6 +230,28 @@ namespace mpm
 
 
   template <int dim>
+  FieldRequests
+  Simulation<dim>::point_fields() const
+  {
+    FieldRequests fields =
+      point_fields_needed(integrator_parameters,
+                          body_parameters,
+                          rigid_wall_parameters,
+                          output_parameters.writes("displacement") ||
+                            Verification<dim>::needs_initial_position(
+                              verification_parameters),
+                          output_parameters.writes("strain") ||
+                            output_parameters.writes("deviatoric strain"));
+    if (stage.staged())
+      for (const auto &s : *stage.stages)
+        fields.displacement_origin |= s.reset_displacements;
+    for (const auto &body : body_parameters)
+      body.material->request_fields(fields);
+    return fields;
+  }
+
+
+  template <int dim>
   void
   Simulation<dim>::set_up_grid_and_points(const RunState    *resume,
                                           const std::string &checkpoint)
@@ -256,18 +278,9 @@ namespace mpm
         return n;
       },
       resume == nullptr ? "" : Checkpoint::grid_file(checkpoint));
-    FieldRequests fields =
-      point_fields_needed(integrator_parameters,
-                          body_parameters,
-                          rigid_wall_parameters,
-                          output_parameters.writes("displacement") ||
-                            Verification<dim>::needs_initial_position(
-                              verification_parameters),
-                          output_parameters.writes("strain") ||
-                            output_parameters.writes("deviatoric strain"));
+    FieldRequests fields = point_fields();
     if (stage.staged())
-      for (const auto &s : *stage.stages)
-        fields.displacement_origin |= s.reset_displacements;
+      fields |= stage.fields_of_all_stages;
     setup_scope.reset();
     setup_scope.emplace(*timer, "setup: points");
     points = std::make_unique<MaterialPoints<dim>>(*grid,

@@ -579,7 +579,10 @@ namespace
   {
     std::mt19937                           rng(42);
     std::uniform_real_distribution<double> u(-1, 1);
-    double       min_dissipation = 0, max_f = -1, eqps_drop = 0;
+    double min_dissipation = 0, max_f = -1, eqps_drop = 0;
+    // A plastic step ends on the surface of its own end-of-step plastic
+    // strain (with softening: the consistent return).
+    double       min_f_plastic = 0;
     unsigned int plastic_steps = 0;
     for (unsigned int path = 0; path < 20; ++path)
       {
@@ -612,6 +615,8 @@ namespace
                 ++plastic_steps;
                 min_dissipation =
                   std::min(min_dissipation, tau * eps_p / tau.norm());
+                min_f_plastic =
+                  std::min(min_f_plastic, f(tau, p.plastic_strain()));
               }
             eqps_drop = std::max(eqps_drop, eqps - p.plastic_strain());
             max_f     = std::max(max_f, f(tau, p.plastic_strain()));
@@ -624,6 +629,9 @@ namespace
           1e-14);
     check(model + " random paths: largest yield function after the step",
           std::max(max_f, 0.),
+          1e-10);
+    check(model + " random paths: plastic steps end on the yield surface",
+          -min_f_plastic,
           1e-10);
     check(model + " random paths: plastic strain never falls", eqps_drop, 0);
     check(model + " random paths: some steps plastic",

@@ -36,7 +36,7 @@ namespace mpm
     /// dim, a stage resets displacements only: where the displacement
     /// output counts from (the initial position until a reset).
     unsigned int displacement_origin = absent;
-    unsigned int affine_velocity      = absent; ///< dim*dim, APIC's C_p
+    unsigned int affine_velocity     = absent; ///< dim*dim, APIC's C_p
     /// Elastic left Cauchy-Green tensor b_e of the log-strain models, in
     /// the embedded form of Fields::embedded (3, 4 or 6 values).
     unsigned int elastic_left_cauchy_green = absent;
@@ -102,6 +102,12 @@ namespace mpm
     bool         point_load     = false;
     unsigned int wall_slips     = 0; ///< walls with friction
     bool         macro_step     = false;
+
+    /// Also ask for what @p other asks for (the stages of a scene store
+    /// the fields of them all: a checkpoint carries the points from one
+    /// stage to the next).
+    FieldRequests &
+    operator|=(const FieldRequests &other);
   };
 
 

@@ -65,6 +65,10 @@ namespace mpm
     RunEnding
     run();
 
+    /// The point fields this scene needs (its materials' included).
+    FieldRequests
+    point_fields() const;
+
   private:
     /// The grid, partitioned by the points each cell will hold, and the
     /// bodies' points (or the checkpoint's partition and points).

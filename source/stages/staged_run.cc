@@ -157,6 +157,7 @@ namespace mpm
       const std::vector<StageParameters>            &stages,
       const unsigned int                             k,
       const std::string                             &from,
+      const FieldRequests                           &fields,
       MPI_Comm                                       comm)
     {
       ConditionalOStream     pcout(std::cout,
@@ -170,6 +171,7 @@ namespace mpm
         for (unsigned int j = 0; j <= k; ++j)
           apply_changes(prm, stages[j]);
         StagePosition position{&stages, k, true, reduce_strength(prm, factor)};
+        position.fields_of_all_stages = fields;
         prm.enter_subsection("Output");
         run_directory = prm.get("directory");
         prm.leave_subsection();
@@ -248,7 +250,9 @@ namespace mpm
         run_one<dim>(prm, comm, restart, {});
         return;
       }
-    // Every stage's scene, read (and its values checked) now.
+    // Every stage's scene, read (and its values checked) now, and the
+    // point fields they need together.
+    FieldRequests fields;
     {
       ParameterHandler scratch;
       read_scene(scratch);
@@ -261,6 +265,7 @@ namespace mpm
                                           comm,
                                           "",
                                           {&stages, k, false});
+              fields |= check.point_fields();
             }
           catch (const InputError &e)
             {
@@ -294,11 +299,13 @@ namespace mpm
                              "of the stage before, which did not reach "
                              "equilibrium: the strength of the scene itself "
                              "(F = 1) does not hold");
-            search_factor_of_safety<dim>(read_scene, stages, k, from, comm);
+            search_factor_of_safety<dim>(
+              read_scene, stages, k, from, fields, comm);
             return;
           }
-        const RunEnding ending =
-          run_one<dim>(prm, comm, from, {&stages, k, k > first});
+        StagePosition position{&stages, k, k > first};
+        position.fields_of_all_stages = fields;
+        const RunEnding ending        = run_one<dim>(prm, comm, from, position);
         if (!ending.stage_ended)
           return; // at the end time, within the stage
         from           = ending.checkpoint;

@@ -368,7 +368,7 @@ namespace mpm
         if (Flow::is_plastic)
           requests.plastic_strain = true;
         if constexpr (CanPart<Flow>::value)
-          requests.opening = flow.can_part();
+          requests.opening = requests.opening || flow.can_part();
         damage.request_fields(requests);
       }
 

@@ -6,6 +6,8 @@
 // as a finite-element slope code runs gravity loading, then the failure.
 #include <deal.II/base/parameter_handler.h>
 
+#include <mpm/field_layout.h>
+
 #include <map>
 #include <string>
 #include <utility>
@@ -88,6 +90,10 @@ namespace mpm
     /// Entries the run changes besides the stage's own changes (a trial of
     /// the strength reduction: the reduced strengths).
     std::vector<std::string> other_changes = {};
+    /// The point fields of every stage's scene together (run_scene): the
+    /// points keep one layout through the stages, e.g. the opening of a
+    /// soil that softens to no cohesion only in a later stage.
+    FieldRequests fields_of_all_stages = {};
 
     bool
     staged() const
