@@ -77,9 +77,9 @@ def picture(out, png, title):
     fig, ax = plt.subplots(figsize=(10, 3.2))
     sc = ax.scatter([p[0] for p in xyz], [p[1] for p in xyz], c=eqps, s=4,
                     cmap="viridis", vmin=0, vmax=1)
-    ax.plot([0, 20, 30], [0, 10, 10], "k--", lw=0.8, label="slope before")
+    ax.plot([0, 20, 60], [0, 10, 10], "k--", lw=0.8, label="slope before")
     ax.set_aspect("equal")
-    ax.set_xlim(-20, max(p[0] for p in xyz) + 1)
+    ax.set_xlim(min(p[0] for p in xyz) - 1, max(p[0] for p in xyz) + 1)
     ax.set_ylim(0, 11)
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
