@@ -569,13 +569,14 @@ namespace
    * tau : d eps_p >= 0 (d eps_p = eps_trial - eps_new, coaxial), never
    * lower the plastic strain, and leave the stress inside the yield
    * surface (@p f: the model's yield function of the Kirchhoff stress and
-   * the plastic strain, normalised).
+   * the plastic strain, normalised), in a grid of cell size @p cell_size.
    */
   template <typename YieldFunction>
   void
   random_paths(const std::string                                      &model,
                const std::vector<std::pair<std::string, std::string>> &settings,
-               const YieldFunction                                    &f)
+               const YieldFunction                                    &f,
+               const double cell_size = 1.)
   {
     std::mt19937                           rng(42);
     std::uniform_real_distribution<double> u(-1, 1);
@@ -589,7 +590,7 @@ namespace
         SymmetricTensor<2, 3> sigma0;
         for (unsigned int d = 0; d < 3; ++d)
           sigma0[d][d] = -5e4;
-        Point<3> p(model, settings, sigma0);
+        Point<3> p(model, settings, sigma0, cell_size);
         for (unsigned int i = 0; i < 200; ++i)
           {
             Tensor<2, 3> L;
@@ -732,6 +733,29 @@ main()
                  const double pw = phi + w * (20 * M_PI / 180 - phi);
                  return mohr_coulomb_f(sorted_principal(tau), cw, pw) / 1e4;
                });
+  // Softening regularised by the band's thickness: a band 0.2 m thick in
+  // cells of 0.4 m is residual at half the strain given (the slip across
+  // the cell, 0.025 x 0.4 m, is the band's, 0.05 x 0.2 m).
+  random_paths(
+    "Mohr-Coulomb",
+    {{"Young's modulus", "1e7"},
+     {"Poisson's ratio", "0.3"},
+     {"cohesion", "1e4"},
+     {"friction angle", "30"},
+     {"dilation angle", "10"},
+     {"softening", "linear"},
+     {"residual cohesion", "2e3"},
+     {"residual friction angle", "20"},
+     {"residual dilation angle", "0"},
+     {"residual plastic strain", "0.05"},
+     {"shear band thickness", "0.2"}},
+    [&](const SymmetricTensor<2, 3> &tau, const double eqps) {
+      const double w  = std::min(eqps / 0.025, 1.);
+      const double cw = 1e4 + w * (2e3 - 1e4);
+      const double pw = phi + w * (20 * M_PI / 180 - phi);
+      return mohr_coulomb_f(sorted_principal(tau), cw, pw) / 1e4;
+    },
+    0.4);
   // Softening of the cohesion alone: the residual friction and dilation
   // angles default to the peak ones ('peak'), so phi stays 30 degrees.
   random_paths("Mohr-Coulomb",

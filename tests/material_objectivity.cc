@@ -80,7 +80,7 @@ namespace
     prm.set("Young's modulus", "1000");
     prm.set("Poisson's ratio", "0.3");
     prm.leave_subsection();
-    return MaterialRegistry::create<2>(name, prm, "test", 1.);
+    return MaterialRegistry::create<2>(name, prm, "test", {1.});
   }
 } // namespace
 

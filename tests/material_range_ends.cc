@@ -204,6 +204,7 @@ main()
        softening,
        "residual plastic strain",
        {"1e-300", "1e300"});
+  ends("Mohr-Coulomb", softening, "shear band thickness", {"1e-300", "1e300"});
 
   const std::string maxwell = "Maxwell viscoelastic";
   ends(maxwell, elastic, "viscosity", {"1e-300", "1e300"});

@@ -18,13 +18,15 @@ namespace single_point
   using namespace dealii;
   using namespace mpm;
 
-  /// One material point of model @p name with parameters @p settings.
+  /// One material point of model @p name with parameters @p settings, of
+  /// unit volume in a grid of cell size @p cell_size.
   template <int dim>
   struct Point
   {
     Point(const std::string                                      &name,
           const std::vector<std::pair<std::string, std::string>> &settings,
-          const SymmetricTensor<2, 3> &sigma0 = SymmetricTensor<2, 3>())
+          const SymmetricTensor<2, 3> &sigma0    = SymmetricTensor<2, 3>(),
+          const double                 cell_size = 1.)
     {
       ParameterHandler prm;
       MaterialRegistry::declare_parameters(prm);
@@ -39,7 +41,8 @@ namespace single_point
         else
           prm.set(key, value);
       prm.leave_subsection();
-      material = MaterialRegistry::create<dim>(name, prm, "test", density);
+      material =
+        MaterialRegistry::create<dim>(name, prm, "test", {density, cell_size});
       FieldRequests requests;
       material->request_fields(requests);
       layout = assemble_layout<dim>(requests);

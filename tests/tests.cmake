@@ -323,6 +323,9 @@ set(footing_mc ARGS -s "Grid/cells=20,14" -s "Simulation/end time=0.5"
   -s "Bodies/Body 0/Mohr-Coulomb/residual cohesion=5e3"
   -s "Bodies/Body 0/Mohr-Coulomb/residual friction angle=20")
 mpm_test(footing_mohr_coulomb PRM ../benchmarks/plasticity/strip_footing.prm ${footing_mc})
+mpm_test(bad_shear_band_thickness PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ${footing_mc} -s "Bodies/Body 0/Mohr-Coulomb/shear band thickness=0"
+  ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/shear band thickness' = '0': must be 'local' or a thickness in m, > 0")
 mpm_test(footing_mohr_coulomb_mpi2 PRM ../benchmarks/plasticity/strip_footing.prm NP 2
   REFERENCE footing_mohr_coulomb.output RELTOL 1e-7 ${footing_mc})
 #    Bad values of the new parameters name the parameter.

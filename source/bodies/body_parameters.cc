@@ -12,6 +12,21 @@ namespace mpm
 {
   namespace
   {
+    /// The side of the square (cubic) cell of a grid cell's area (volume):
+    /// the width of a shear band one cell wide, whatever its angle across
+    /// cells that need not be square.
+    template <int dim>
+    double
+    square_cell_size(const GridParameters<dim> &grid)
+    {
+      const Tensor<1, dim> h      = grid.cell_size();
+      double               volume = 1.;
+      for (unsigned int d = 0; d < dim; ++d)
+        volume *= h[d];
+      return std::pow(volume, 1. / dim);
+    }
+
+
     /// A comma-separated list of mesh ids (material or boundary) in
     /// (whole numbers >= 0); empty gives an empty set.
     std::set<unsigned int>
@@ -243,7 +258,10 @@ namespace mpm
         constants,
         name + "/rigid velocity");
     material_name = prm.get("material");
-    material = MaterialRegistry::create<dim>(material_name, prm, name, density);
+    material      = MaterialRegistry::create<dim>(material_name,
+                                             prm,
+                                             name,
+                                             {density, square_cell_size(grid)});
     if (is_displaced() && !material->needs_deformation_gradient())
       throw InputError(name + "/initial displacement",
                        prm.get("initial displacement"),

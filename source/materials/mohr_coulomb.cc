@@ -139,14 +139,28 @@ namespace mpm
                           "0.1",
                           Patterns::Anything(),
                           "Softening: equivalent plastic strain at which the "
-                          "residual values are reached, > 0.");
+                          "residual values are reached, > 0 (in a shear "
+                          "band of 'shear band thickness').");
+        prm.declare_entry(
+          "shear band thickness",
+          "local",
+          Patterns::Anything(),
+          "Softening: 'local' (the residual plastic strain as given, on "
+          "every grid: a band of softening forms a cell wide, so on a finer "
+          "grid the soil is residual after less slip and dissipates less "
+          "work), or the thickness in m, > 0, of the band for which the "
+          "residual plastic strain is given: the program scales the strain "
+          "by this thickness over the cell size, so that the slip across "
+          "the band at which the soil is residual, strain x thickness, is "
+          "the same on every grid (regularisation by the band's width).");
       }
 
       using Strength = FrictionalStrength;
 
       MohrCoulombFlow(ParameterHandler       &prm,
                       const std::string      &path,
-                      const ElasticConstants &constants)
+                      const ElasticConstants &constants,
+                      const MaterialContext  &context)
         : elasticity(constants)
       {
         peak      = FrictionalStrength::parse(prm, path);
@@ -174,10 +188,49 @@ namespace mpm
               phi));
             residual_strain = Parse::bounded_double(
               prm, path, "residual plastic strain", 0, 1e300, true);
+            residual_strain *= band_scale(prm, path, context.cell_size);
           }
         peak_angles      = angles_of(peak);
         peak_surface     = surface(peak);
         residual_surface = surface(strength(residual_strain));
+      }
+
+      /**
+       * The factor from the residual plastic strain as given to the one the
+       * grid needs: 1 for 'local', otherwise the band's thickness over the
+       * cell size. A shear band of strain softening localises into one
+       * cell whatever the grid (measured: benchmarks/slope/README.md), so
+       * the slip across it at a given strain shrinks with the cell, and so
+       * does the work the softening dissipates; scaling the strain by
+       * thickness / h keeps both fixed (Pietruszczak and Mroz 1981; the
+       * crack band of Bazant and Oh 1983 for shear).
+       */
+      static double
+      band_scale(const ParameterHandler &prm,
+                 const std::string      &path,
+                 const double            cell_size)
+      {
+        const std::string text = prm.get("shear band thickness");
+        if (text == "local")
+          return 1.;
+        double thickness = 0;
+        try
+          {
+            thickness = Parse::bounded_double(
+              prm, path, "shear band thickness", 0, 1e300, true);
+          }
+        catch (const InputError &)
+          {
+            throw InputError(path + "/shear band thickness",
+                             text,
+                             "must be 'local' or a thickness in m, > 0");
+          }
+        if (!(cell_size > 0))
+          throw InputError(path + "/shear band thickness",
+                           text,
+                           "needs a grid (the strain is scaled by the cell "
+                           "size); 'local' here");
+        return thickness / cell_size;
       }
 
       Strength

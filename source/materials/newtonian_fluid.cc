@@ -26,9 +26,9 @@ namespace mpm
     class NewtonianFluid : public PointwiseMaterial<dim, NewtonianFluid<dim>>
     {
     public:
-      NewtonianFluid(ParameterHandler  &prm,
-                     const std::string &path,
-                     const double       density)
+      NewtonianFluid(ParameterHandler      &prm,
+                     const std::string     &path,
+                     const MaterialContext &context)
         : K(Parse::bounded_double(prm,
                                   path,
                                   "bulk modulus",
@@ -37,7 +37,7 @@ namespace mpm
                                   true))
         , gamma(Parse::bounded_double(prm, path, "Tait exponent", 1, 20))
         , eta(Parse::bounded_double(prm, path, "viscosity", 0, 1e300))
-        , reference_density(density)
+        , reference_density(context.density)
         , given(Parse::given(prm, path, "bulk modulus"))
       {
       }

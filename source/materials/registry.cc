@@ -91,10 +91,10 @@ namespace mpm
 
     template <int dim>
     std::unique_ptr<Material<dim>>
-    create(const std::string &name,
-           ParameterHandler  &prm,
-           const std::string &path,
-           const double       density)
+    create(const std::string     &name,
+           ParameterHandler      &prm,
+           const std::string     &path,
+           const MaterialContext &context)
     {
       for (const auto &e : registry())
         if (name == e.name)
@@ -103,11 +103,11 @@ namespace mpm
             std::unique_ptr<Material<dim>> m;
             const std::string              here = path + "/" + name;
             if constexpr (dim == 1)
-              m = e.create_1d(prm, here, density);
+              m = e.create_1d(prm, here, context);
             else if constexpr (dim == 2)
-              m = e.create_2d(prm, here, density);
+              m = e.create_2d(prm, here, context);
             else
-              m = e.create_3d(prm, here, density);
+              m = e.create_3d(prm, here, context);
             prm.leave_subsection();
             return m;
           }
@@ -121,17 +121,17 @@ namespace mpm
     create<1>(const std::string &,
               ParameterHandler &,
               const std::string &,
-              const double);
+              const MaterialContext &);
     template std::unique_ptr<Material<2>>
     create<2>(const std::string &,
               ParameterHandler &,
               const std::string &,
-              const double);
+              const MaterialContext &);
     template std::unique_ptr<Material<3>>
     create<3>(const std::string &,
               ParameterHandler &,
               const std::string &,
-              const double);
+              const MaterialContext &);
   } // namespace MaterialRegistry
 
   template class Material<1>;

@@ -302,6 +302,8 @@ namespace mpm
      *     static void declare_parameters(ParameterHandler &);
      *     Flow(ParameterHandler &, const std::string &path,
      *          const ElasticConstants &);
+     *     // (or with a fourth argument, const MaterialContext &, for a
+     *     // flow that needs the body's context)
      *     // Plastic: return tau (in place) to the admissible set of a
      *     // point with equivalent plastic strain eqps; false if it was
      *     // inside.
@@ -342,14 +344,14 @@ namespace mpm
       static constexpr bool is_viscous = IsViscous<Flow>::value;
 
     public:
-      Model(ParameterHandler  &prm,
-            const std::string &path,
-            const double       density)
+      Model(ParameterHandler      &prm,
+            const std::string     &path,
+            const MaterialContext &context)
         : IsotropicPointwiseMaterial<dim, Model<dim, Flow>>(prm, path)
         , elasticity(this->constants)
-        , flow(prm, path, this->constants)
+        , flow(make_flow(prm, path, this->constants, context))
         , damage(prm, path, this->constants.youngs_modulus())
-        , reference_density(density)
+        , reference_density(context.density)
       {
       }
 
@@ -612,6 +614,24 @@ namespace mpm
                               p + layout.stress);
               }
           }
+      }
+
+      /// The flow rule, given the body's context if it takes one (a
+      /// softening model's regularisation needs the cell size).
+      static Flow
+      make_flow(ParameterHandler       &prm,
+                const std::string      &path,
+                const ElasticConstants &constants,
+                const MaterialContext  &context)
+      {
+        if constexpr (std::is_constructible_v<Flow,
+                                              ParameterHandler &,
+                                              const std::string &,
+                                              const ElasticConstants &,
+                                              const MaterialContext &>)
+          return Flow(prm, path, constants, context);
+        else
+          return Flow(prm, path, constants);
       }
 
       /// The spectral decomposition of a point's stored b_e.

@@ -16,6 +16,20 @@ namespace mpm
   using namespace dealii;
 
   /**
+   * What a model is made for besides its own parameters: the body's
+   * reference density, and the grid's cell size, the length over which a
+   * softening model localises (its regularisation needs it).
+   */
+  struct MaterialContext
+  {
+    double density;
+    /// The side of a square (cubic) cell of the grid cell's size; 0 where
+    /// there is no grid (single-point drivers).
+    double cell_size = 0.;
+  };
+
+
+  /**
    * A constitutive model: it turns the kinematics the integrator stores on
    * each material point (velocity gradient L, and F if the model asks for
    * it) into Cauchy stress, and owns whatever state it needs.
@@ -183,14 +197,14 @@ namespace mpm
     declare_parameters(ParameterHandler &prm);
 
     /// Create the model @p name from its subsection of the current
-    /// subsection, for a body of reference density @p density; @p path is
-    /// used in error messages.
+    /// subsection, for a body in @p context; @p path is used in error
+    /// messages.
     template <int dim>
     std::unique_ptr<Material<dim>>
-    create(const std::string &name,
-           ParameterHandler  &prm,
-           const std::string &path,
-           const double       density);
+    create(const std::string     &name,
+           ParameterHandler      &prm,
+           const std::string     &path,
+           const MaterialContext &context);
   } // namespace MaterialRegistry
 } // namespace mpm
 

@@ -90,11 +90,11 @@ namespace mpm
   {
   public:
     /// The constants from the model's subsection at @p path (the registry
-    /// passes the body's reference density too, which an elastic model
-    /// does not need).
+    /// passes the body's context too, which an elastic model does not
+    /// need).
     IsotropicPointwiseMaterial(ParameterHandler  &prm,
                                const std::string &path,
-                               const double = 0.)
+                               const MaterialContext & = {0., 0.})
       : constants(prm, path)
     {
     }
@@ -144,15 +144,15 @@ namespace mpm
   using MaterialCreator =
     std::unique_ptr<Material<dim>> (*)(ParameterHandler &,
                                        const std::string &,
-                                       const double density);
+                                       const MaterialContext &);
 
   template <int dim, template <int> class Model>
   std::unique_ptr<Material<dim>>
-  make_material(ParameterHandler  &prm,
-                const std::string &path,
-                const double       density)
+  make_material(ParameterHandler      &prm,
+                const std::string     &path,
+                const MaterialContext &context)
   {
-    return std::make_unique<Model<dim>>(prm, path, density);
+    return std::make_unique<Model<dim>>(prm, path, context);
   }
 
   /// One line of the registry.
