@@ -190,9 +190,12 @@ namespace mpm
               prm, path, "residual plastic strain", 0, 1e300, true);
             residual_strain *= band_scale(prm, path, context.cell_size);
           }
-        peak_angles      = angles_of(peak);
-        peak_surface     = surface(peak);
-        residual_surface = surface(strength(residual_strain));
+        peak_angles         = angles_of(peak);
+        peak_surface        = surface(peak);
+        residual_surface    = surface(strength(residual_strain));
+        peak_main_plane     = main_plane(peak, peak_angles);
+        residual_main_plane = main_plane(strength(residual_strain),
+                                         angles_of(strength(residual_strain)));
       }
 
       /**
@@ -284,7 +287,9 @@ namespace mpm
       /// those at eqps. In one step the angles change by little, and
       /// sin(a + d) = sin a cos d + cos a sin d with the series of sin d
       /// and cos d is exact to round-off for |d| < 1e-3: the softening
-      /// return's trial strengths cost no trigonometry.
+      /// return's trial strengths cost no trigonometry. A larger turn (from
+      /// the peak to a point's plastic strain) takes sin d and cos d, and
+      /// an angle that does not soften (d = 0) nothing.
       Angles
       angles_after(const Angles &base, const double eqps, const double x) const
       {
@@ -292,6 +297,8 @@ namespace mpm
         const double w1 = std::min((eqps + x) / residual_strain, 1.);
         const auto   turn =
           [](const double sin_a, const double cos_a, const double d) {
+            if (d == 0)
+              return std::make_pair(sin_a, cos_a);
             double sin_d, cos_d;
             if (std::abs(d) < 1e-3)
               {
@@ -387,12 +394,53 @@ namespace mpm
         return std::max({t[1] - t[0], t[2] - t[1], surface.max_yield(t)});
       }
 
-      /// The tolerance of the return of sorted stresses @p s.
+      /// The tolerance of the return of sorted stresses @p s to a surface
+      /// of cohesion @p c.
       static double
-      tolerance_of(const std::array<double, 3> &s, const Surface &surface)
+      tolerance_of(const std::array<double, 3> &s, const double c)
       {
-        return 1e-12 * (std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]) +
-                        surface.c + 1e-300);
+        return 1e-12 *
+               (std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]) + c + 1e-300);
+      }
+
+      /**
+       * The main plane (s1, s3) of one strength alone, with what decides
+       * whether a stress on it is admissible: for sorted stresses it lies
+       * above both edge planes (f_main - f_(1,2) = (s2 - s3)(1 - sin phi)
+       * >= 0, f_main - f_(2,3) = (s1 - s2)(1 + sin phi) >= 0), so a sorted
+       * stress on it is admissible if its largest value is below the
+       * cutoff or apex. A softening return whose active set stays this
+       * plane (nearly always) needs no other plane: issue 33's softening
+       * cost came from building the six planes of every trial strength.
+       */
+      struct MainPlane
+      {
+        std::array<double, 3> a, Dn;
+        double                k, tension, c;
+
+        /// The yield function of sorted stresses @p s: the larger of the
+        /// main plane's and the cutoff's (the surface's largest).
+        double
+        max_yield(const std::array<double, 3> &s) const
+        {
+          return std::max(dot(a, s) - k, s[0] - tension);
+        }
+      };
+
+      MainPlane
+      main_plane(const Strength &m, const Angles &angles) const
+      {
+        MainPlane    plane;
+        const double sf = angles.sin_phi, sp = angles.sin_psi;
+        plane.a  = {{1 + sf, 0, -(1 - sf)}};
+        plane.Dn = elasticity.stress({{1 + sp, 0, -(1 - sp)}});
+        plane.k  = 2 * m.c * angles.cos_phi;
+        plane.tension =
+          std::min(cutoff,
+                   sf > 0 ? m.c * angles.cos_phi / sf
+                          : std::numeric_limits<double>::infinity());
+        plane.c = m.c;
+        return plane;
       }
 
       /// Return sorted stresses @p s onto the planes of @p surface in the
@@ -437,7 +485,7 @@ namespace mpm
                     const Surface         &surface,
                     unsigned int          *accepted = nullptr) const
       {
-        const double tolerance = tolerance_of(s, surface);
+        const double tolerance = tolerance_of(s, surface.c);
         if (surface.max_yield(s) <= tolerance)
           return false;
         // Candidate active sets, one plane before two before three, the
@@ -512,18 +560,88 @@ namespace mpm
           }
         else
           {
-            const Angles base =
-              eqps <= 0 ? peak_angles : angles_of(strength(eqps));
-            const Surface &start =
-              eqps <= 0 ? peak_surface
-                        : (buffer = surface(strength(eqps), base), buffer);
-            if (!return_sorted(s, start, &set))
+            // Turned from the peak: no trigonometry for an angle that
+            // does not soften (the cohesion alone, or psi = 0 throughout).
+            const Angles    base = angles_after(peak_angles, 0, eqps);
+            const Strength  m    = strength(eqps);
+            const MainPlane start =
+              eqps <= 0 ? peak_main_plane : main_plane(m, base);
+            // The test of return_sorted, on the plane that decides it.
+            if (start.max_yield(s) <= tolerance_of(s, start.c))
               return false;
-            s = consistent_softening_return(trial, eqps, base, s, set);
+            if (!main_plane_softening_return(trial, eqps, base, start, s))
+              {
+                const Surface &full = eqps <= 0
+                                        ? peak_surface
+                                        : (buffer = surface(m, base), buffer);
+                if (!return_sorted(s, full, &set))
+                  return false;
+                s = consistent_softening_return(trial, eqps, base, s, set);
+              }
           }
         for (unsigned int i = 0; i < 3; ++i)
           tau[order[i]] = s[i];
         return true;
+      }
+
+      /// Sorted trial stresses @p trial returned to @p plane.
+      std::array<double, 3>
+      returned_to(const std::array<double, 3> &trial,
+                  const MainPlane             &plane) const
+      {
+        const double dgamma =
+          (dot(plane.a, trial) - plane.k) / dot(plane.a, plane.Dn);
+        return {{trial[0] - dgamma * plane.Dn[0],
+                 trial[1] - dgamma * plane.Dn[1],
+                 trial[2] - dgamma * plane.Dn[2]}};
+      }
+
+      /**
+       * The consistent softening return (see consistent_softening_return)
+       * with the main plane as its active set, by the secant method from
+       * the return to @p start, the main plane of the strength at the
+       * step's start @p eqps (its angles @p base). True, with @p s, if it
+       * converges to a sorted stress within the cutoff of its own
+       * strength: that stress then solves the consistent return. False
+       * (then the search over active sets decides) if not.
+       */
+      bool
+      main_plane_softening_return(const std::array<double, 3> &trial,
+                                  const double                 eqps,
+                                  const Angles                &base,
+                                  const MainPlane             &start,
+                                  std::array<double, 3>       &s) const
+      {
+        std::array<double, 3> t  = returned_to(trial, start);
+        double                x0 = 0;
+        double h0 = elasticity.equivalent_plastic_strain(trial, t);
+        double x1 = h0, h1 = 0;
+        for (unsigned int it = 0; it < 20; ++it)
+          {
+            const MainPlane plane =
+              eqps + x1 >= residual_strain
+                ? residual_main_plane
+                : main_plane(strength(eqps + x1), angles_after(base, eqps, x1));
+            if (!(dot(plane.a, trial) - plane.k >= 0))
+              return false;
+            t  = returned_to(trial, plane);
+            h1 = elasticity.equivalent_plastic_strain(trial, t) - x1;
+            if (std::abs(h1) <= 1e-10 * x1 + 1e-300)
+              {
+                if (std::max({t[1] - t[0], t[2] - t[1], t[0] - plane.tension}) >
+                    tolerance_of(t, plane.c))
+                  return false;
+                s = t;
+                return true;
+              }
+            if (h1 == h0)
+              return false;
+            const double x2 = x1 - h1 * (x1 - x0) / (h1 - h0);
+            if (!(x2 >= 0))
+              return false;
+            x0 = x1, h0 = h1, x1 = x2;
+          }
+        return false;
       }
 
       /**
@@ -572,7 +690,7 @@ namespace mpm
             h1 = elasticity.equivalent_plastic_strain(trial, t) - x1;
             if (std::abs(h1) <= 1e-10 * x1 + 1e-300)
               {
-                if (miss(t, trial_surface) <= tolerance_of(t, trial_surface))
+                if (miss(t, trial_surface) <= tolerance_of(t, trial_surface.c))
                   return t;
                 // The set changed in the step (an edge reached): go on
                 // from here with the set of the full return, once.
@@ -661,6 +779,7 @@ namespace mpm
       Strength                  peak, residual;
       Angles                    peak_angles;
       Surface                   peak_surface, residual_surface;
+      MainPlane                 peak_main_plane, residual_main_plane;
       double                    cutoff;
       bool                      softening;
       double                    residual_strain = 1;
