@@ -103,14 +103,18 @@ def main():
     p.add_argument("--exe", required=True)
     p.add_argument("--cells", default="45,6")
     p.add_argument("--repeat", type=int, default=3)
+    p.add_argument("--skip", default="",
+                   help="cases to leave out, comma-separated (e.g. those an "
+                   "older build does not know)")
     a = p.parse_args()
-    times = {name: [] for name, _ in CASES}
+    cases = [c for c in CASES if c[0] not in a.skip.split(",")]
+    times = {name: [] for name, _ in cases}
     for _ in range(a.repeat):
-        for name, extra in CASES:
+        for name, extra in cases:
             times[name].append(run(a, extra))
     print("case,stress_ns,step_ns,stress_ratio,step_ratio")
     base = None
-    for name, _ in CASES:
+    for name, _ in cases:
         stress = statistics.median(t[0] for t in times[name])
         step = statistics.median(t[1] for t in times[name])
         base = base or (stress, step)
