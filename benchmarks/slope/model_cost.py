@@ -21,9 +21,6 @@ import argparse, os, re, statistics, subprocess, sys, tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MC = "Bodies/Body 0/Mohr-Coulomb/"
-SOFTENING = [MC + "softening=linear", MC + "residual cohesion=0",
-             MC + "residual friction angle=12",
-             MC + "residual plastic strain=0.05"]
 
 
 def stage_1(changes):
@@ -52,12 +49,11 @@ CASES = [
     ("MC softening c", stage_1([MC + "cohesion = 3e3", MC + "softening = linear",
                                 MC + "residual cohesion = 0",
                                 MC + "residual plastic strain = 0.05"])),
-    ("MC softening c and phi (runout.prm)", []),
-    ("MC softening c and phi band 1 m",
+    ("MC softening c and phi",
      stage_1([MC + "cohesion = 3e3", MC + "softening = linear",
               MC + "residual cohesion = 0", MC + "residual friction angle = 12",
-              MC + "residual plastic strain = 0.05",
-              MC + "shear band thickness = 1"])),
+              MC + "residual plastic strain = 0.05"])),
+    ("MC softening c and phi band 1 m (runout.prm)", []),
     ("DP plane strain",
      material("Drucker-Prager", [("cohesion", "1e4"), ("friction angle", "20"),
                                  ("cone", "plane strain")]) +
