@@ -715,47 +715,34 @@ main()
                  return std::max(mohr_coulomb_f(s, c, phi), s[0] - 3e3) / c;
                });
   // Softening: the strength follows the plastic strain at the end of the
-  // step.
-  random_paths("Mohr-Coulomb",
-               {{"Young's modulus", "1e7"},
-                {"Poisson's ratio", "0.3"},
-                {"cohesion", "1e4"},
-                {"friction angle", "30"},
-                {"dilation angle", "10"},
-                {"softening", "linear"},
-                {"residual cohesion", "2e3"},
-                {"residual friction angle", "20"},
-                {"residual dilation angle", "0"},
-                {"residual plastic strain", "0.05"}},
-               [&](const SymmetricTensor<2, 3> &tau, const double eqps) {
-                 const double w  = std::min(eqps / 0.05, 1.);
-                 const double cw = 1e4 + w * (2e3 - 1e4);
-                 const double pw = phi + w * (20 * M_PI / 180 - phi);
-                 return mohr_coulomb_f(sorted_principal(tau), cw, pw) / 1e4;
-               });
-  // Softening regularised by the band's thickness: a band 0.2 m thick in
-  // cells of 0.4 m is residual at half the strain given (the slip across
-  // the cell, 0.025 x 0.4 m, is the band's, 0.05 x 0.2 m).
-  random_paths(
-    "Mohr-Coulomb",
-    {{"Young's modulus", "1e7"},
-     {"Poisson's ratio", "0.3"},
-     {"cohesion", "1e4"},
-     {"friction angle", "30"},
-     {"dilation angle", "10"},
-     {"softening", "linear"},
-     {"residual cohesion", "2e3"},
-     {"residual friction angle", "20"},
-     {"residual dilation angle", "0"},
-     {"residual plastic strain", "0.05"},
-     {"shear band thickness", "0.2"}},
-    [&](const SymmetricTensor<2, 3> &tau, const double eqps) {
-      const double w  = std::min(eqps / 0.025, 1.);
+  // step; c, phi and psi are residual at 5 % (the yield function of a
+  // model residual at @p residual).
+  const std::vector<std::pair<std::string, std::string>> softening = {
+    {"Young's modulus", "1e7"},
+    {"Poisson's ratio", "0.3"},
+    {"cohesion", "1e4"},
+    {"friction angle", "30"},
+    {"dilation angle", "10"},
+    {"softening", "linear"},
+    {"residual cohesion", "2e3"},
+    {"residual friction angle", "20"},
+    {"residual dilation angle", "0"},
+    {"residual plastic strain", "0.05"}};
+  const auto softened_yield = [&](const double residual) {
+    return [&, residual](const SymmetricTensor<2, 3> &tau, const double eqps) {
+      const double w  = std::min(eqps / residual, 1.);
       const double cw = 1e4 + w * (2e3 - 1e4);
       const double pw = phi + w * (20 * M_PI / 180 - phi);
       return mohr_coulomb_f(sorted_principal(tau), cw, pw) / 1e4;
-    },
-    0.4);
+    };
+  };
+  random_paths("Mohr-Coulomb", softening, softened_yield(0.05));
+  // Softening regularised by the band's thickness: a band 0.2 m thick in
+  // cells of 0.4 m is residual at half the strain given (the slip across
+  // the cell, 0.025 x 0.4 m, is the band's, 0.05 x 0.2 m).
+  auto regularised = softening;
+  regularised.emplace_back("shear band thickness", "0.2");
+  random_paths("Mohr-Coulomb", regularised, softened_yield(0.025), 0.4);
   // Softening of the cohesion alone: the residual friction and dilation
   // angles default to the peak ones ('peak'), so phi stays 30 degrees.
   random_paths("Mohr-Coulomb",
