@@ -293,9 +293,9 @@ if(NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
   # Issue 33: softening in a shear band (a Tresca specimen in unconfined
   # compression, benchmarks/plasticity/softening_band.*), at h = 0.1 and
   # 0.05 m: the peak is 2 c (-3 % measured); the platen's slip from the
-  # peak to half the drop shrinks like h with local softening (0.0114 ->
+  # peak to half the drop shrinks like h with local softening (0.0113 ->
   # 0.0060 m, ratio 0.53) and does not with 'shear band thickness' 0.1 m
-  # (0.0114 -> 0.0150, 1.32). Release only (about 40 s).
+  # (0.0113 -> 0.0149, 1.32). Release only (about 30 s).
   add_test(NAME softening_band_regularised
     COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/plasticity/softening_band.py
       --exe $<TARGET_FILE:dealii-mpm> --ladder 0.1,0.05 --end-time 1.2 --check)
