@@ -190,12 +190,13 @@ namespace mpm
               prm, path, "residual plastic strain", 0, 1e300, true);
             residual_strain *= band_scale(prm, path, context.cell_size);
           }
-        peak_angles         = angles_of(peak);
-        peak_surface        = surface(peak);
-        residual_surface    = surface(strength(residual_strain));
-        peak_main_plane     = main_plane(peak, peak_angles);
-        residual_main_plane = main_plane(strength(residual_strain),
-                                         angles_of(strength(residual_strain)));
+        peak_angles               = angles_of(peak);
+        const Strength end        = strength(residual_strain);
+        const Angles   end_angles = angles_of(end);
+        peak_surface              = surface(peak, peak_angles);
+        residual_surface          = surface(end, end_angles);
+        peak_main_plane           = main_plane(peak, peak_angles);
+        residual_main_plane       = main_plane(end, end_angles);
       }
 
       /**
@@ -347,11 +348,8 @@ namespace mpm
             p[i].n[pairs[i][0]] = 1 + sp, p[i].n[pairs[i][1]] = -(1 - sp);
             p[i].k = k;
           }
-        const double t =
-          std::min(cutoff,
-                   sf > 0 ? m.c * angles.cos_phi / sf
-                          : std::numeric_limits<double>::infinity());
-        surface.n = 3;
+        const double t = tension_limit(m, angles);
+        surface.n      = 3;
         if (std::isfinite(t))
           {
             for (unsigned int i = 0; i < 3; ++i)
@@ -432,15 +430,23 @@ namespace mpm
       {
         MainPlane    plane;
         const double sf = angles.sin_phi, sp = angles.sin_psi;
-        plane.a  = {{1 + sf, 0, -(1 - sf)}};
-        plane.Dn = elasticity.stress({{1 + sp, 0, -(1 - sp)}});
-        plane.k  = 2 * m.c * angles.cos_phi;
-        plane.tension =
-          std::min(cutoff,
-                   sf > 0 ? m.c * angles.cos_phi / sf
-                          : std::numeric_limits<double>::infinity());
-        plane.c = m.c;
+        plane.a       = {{1 + sf, 0, -(1 - sf)}};
+        plane.Dn      = elasticity.stress({{1 + sp, 0, -(1 - sp)}});
+        plane.k       = 2 * m.c * angles.cos_phi;
+        plane.tension = tension_limit(m, angles);
+        plane.c       = m.c;
         return plane;
+      }
+
+      /// The largest principal stress strength @p m admits: the cutoff, or
+      /// the apex c cot phi if that is lower (none without friction).
+      double
+      tension_limit(const Strength &m, const Angles &angles) const
+      {
+        return std::min(cutoff,
+                        angles.sin_phi > 0
+                          ? m.c * angles.cos_phi / angles.sin_phi
+                          : std::numeric_limits<double>::infinity());
       }
 
       /// Return sorted stresses @p s onto the planes of @p surface in the
@@ -584,6 +590,21 @@ namespace mpm
         return true;
       }
 
+      /// One secant step on the plastic strain increment's residual h(x):
+      /// from (x0, h0) and (x1, h1) to x1 and the new iterate in x1. False
+      /// if it cannot be taken (h flat, or the new x negative).
+      static bool
+      secant_step(double &x0, double &h0, double &x1, const double h1)
+      {
+        if (h1 == h0)
+          return false;
+        const double x2 = x1 - h1 * (x1 - x0) / (h1 - h0);
+        if (!(x2 >= 0))
+          return false;
+        x0 = x1, h0 = h1, x1 = x2;
+        return true;
+      }
+
       /// Sorted trial stresses @p trial returned to @p plane.
       std::array<double, 3>
       returned_to(const std::array<double, 3> &trial,
@@ -634,12 +655,8 @@ namespace mpm
                 s = t;
                 return true;
               }
-            if (h1 == h0)
+            if (!secant_step(x0, h0, x1, h1))
               return false;
-            const double x2 = x1 - h1 * (x1 - x0) / (h1 - h0);
-            if (!(x2 >= 0))
-              return false;
-            x0 = x1, h0 = h1, x1 = x2;
           }
         return false;
       }
@@ -703,12 +720,8 @@ namespace mpm
                 if (std::abs(h1) <= 1e-10 * x1 + 1e-300)
                   return t;
               }
-            if (h1 == h0)
+            if (!secant_step(x0, h0, x1, h1))
               break;
-            const double x2 = x1 - h1 * (x1 - x0) / (h1 - h0);
-            if (!(x2 >= 0))
-              break;
-            x0 = x1, h0 = h1, x1 = x2;
           }
         return bracketed_softening_return(trial, eqps);
       }
