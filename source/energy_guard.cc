@@ -21,11 +21,14 @@ namespace mpm
   template <int dim>
   std::array<double, 3>
   EnergyGuard<dim>::check(const Statistics<dim> &s,
-                          const double           work,
-                          const double           absolute_work,
-                          const double           stress_work,
+                          const WorkAccount     &sums,
                           const double           t)
   {
+    const double work          = sums.external;
+    const double absolute_work = sums.absolute_external;
+    const double stress_work   = sums.absorbed;
+    const double grid_work =
+      sums.face_friction + sums.face_constraint + sums.damping;
     const double gravity =
       s.gravitational_energy - s.rigid_gravitational_energy;
     const double energy =
@@ -43,7 +46,7 @@ namespace mpm
     const double gain   = energy - initial_energy - work;
     const double dissipation =
       with_residual ? stress_work - s.strain_energy + initial_strain : 0.;
-    const double residual = with_residual ? gain + dissipation : 0.;
+    const double residual = with_residual ? gain + dissipation - grid_work : 0.;
     if (bound == 0)
       return {{put_in, residual, dissipation}};
     // Round-off of the sums (the gravitational energy is measured from the
@@ -77,7 +80,11 @@ namespace mpm
                "work their stresses absorbed, "
             << stress_work
             << " J of it, beyond their initial energy and the work done on "
-               "them), ";
+               "them"
+            << (grid_work != 0 ? " and taken out by the grid's faces and the "
+                                 "damping"
+                               : "")
+            << "), ";
         stop(msg,
              residual,
              ": the numerics create energy, which plasticity hides in the "

@@ -201,12 +201,18 @@ namespace mpm
       "velocity regions, the virtual fluid), dissipation D (J: the work "
       "the stresses absorbed, the stress power summed over the steps, less "
       "the strain energy they store: plastic, viscous and damage "
-      "dissipation) and energy_residual R over the energy put in, so that "
-      "the total energy changes by E - E(0) = W - D + R. R is the "
+      "dissipation), the work of the grid (J, negative where it takes "
+      "energy out; at each force update: "
+      "face_friction_work, Coulomb friction on friction faces; face_work, "
+      "the other face rules: velocity into fixed, slip and friction faces "
+      "taken out, fixed faces' tangential hold, absorbing dashpots; "
+      "damping_work, global and local damping) and energy_residual R over "
+      "the energy put in, so that the total energy changes by E - E(0) = "
+      "W - D + face_friction_work + face_work + damping_work + R. R is the "
       "numerics' share, which plasticity cannot hide as it hides it in the "
-      "total energy (> 0: made; < 0: lost to the transfer, and to the grid "
-      "faces' constraints and friction, local damping and absorbing faces, "
-      "which it also holds). The energy growth bound then applies to R "
+      "total energy (> 0: made; < 0: lost to the transfer, to contact "
+      "between bodies and to the time stepping). The energy growth bound "
+      "then applies to R "
       "too. Costs two passes over the points per step.");
     prm.declare_entry("small mass fraction",
                       "0.25",

@@ -378,8 +378,12 @@ namespace mpm
       for (const std::string c : {"macro_steps", "macro_mismatch"})
         columns.push_back(c);
     if (integrator_parameters.energy_residual)
-      for (const std::string c :
-           {"external_work", "dissipation", "energy_residual"})
+      for (const std::string c : {"external_work",
+                                  "dissipation",
+                                  "face_friction_work",
+                                  "face_work",
+                                  "damping_work",
+                                  "energy_residual"})
         columns.push_back(c);
     if (stage.staged())
       columns.push_back("stage");
@@ -803,13 +807,16 @@ namespace mpm
     // Before anything is written: a run that fails keeps its last good
     // output.
     stop_if_not_finite(s, extra);
-    const auto [work, absolute_work, absorbed] =
-      integrator->work_account().totals(comm);
+    const WorkAccount work = integrator->work_account().totals(comm);
     const auto [put_in, residual, dissipation] =
-      energy_guard->check(s, work, absolute_work, absorbed, integrator->time());
+      energy_guard->check(s, work, integrator->time());
     if (integrator_parameters.energy_residual)
-      for (const double value :
-           {work, dissipation, put_in > 0 ? residual / put_in : 0.})
+      for (const double value : {work.external,
+                                 dissipation,
+                                 work.face_friction,
+                                 work.face_constraint,
+                                 work.damping,
+                                 put_in > 0 ? residual / put_in : 0.})
         extra.push_back(value);
     if (stage.staged())
       extra.push_back(stage.index);

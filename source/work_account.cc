@@ -1,32 +1,62 @@
 #include <mpm/checkpoint.h>
 #include <mpm/work_account.h>
 
+#include <array>
+#include <utility>
+
 namespace mpm
 {
-  std::array<double, 3>
+  namespace
+  {
+    /// Each sum with its key in a checkpoint's state.txt. The grid's
+    /// work (the last three) was not accounted by older
+    /// checkpoints: missing there, it starts from 0.
+    template <typename Account>
+    auto
+    keyed_sums(Account &a)
+    {
+      using Sum = decltype(&a.external);
+      return std::array<std::pair<const char *, Sum>, 6>{
+        {{"external_work", &a.external},
+         {"absolute_work", &a.absolute_external},
+         {"stress_work", &a.absorbed},
+         {"face_friction_work", &a.face_friction},
+         {"face_constraint_work", &a.face_constraint},
+         {"damping_work", &a.damping}}};
+    }
+    constexpr unsigned int n_required_sums = 3;
+  } // namespace
+
+
+  WorkAccount
   WorkAccount::totals(const MPI_Comm comm) const
   {
-    return {{Utilities::MPI::sum(external, comm),
-             Utilities::MPI::sum(absolute_external, comm),
-             Utilities::MPI::sum(absorbed, comm)}};
+    WorkAccount total;
+    const auto  mine = keyed_sums(*this);
+    const auto  sums = keyed_sums(total);
+    for (unsigned int i = 0; i < mine.size(); ++i)
+      *sums[i].second = Utilities::MPI::sum(*mine[i].second, comm);
+    return total;
   }
 
 
   void
   WorkAccount::save_state(RunState &state, const MPI_Comm comm) const
   {
-    const auto [w, a, s]          = totals(comm);
-    state.values["external_work"] = w;
-    state.values["absolute_work"] = a;
-    state.values["stress_work"]   = s;
+    WorkAccount total = totals(comm);
+    for (const auto &[key, sum] : keyed_sums(total))
+      state.values[key] = *sum;
   }
 
 
   void
   WorkAccount::restore_state(const RunState &state, const MPI_Comm comm)
   {
-    external          = state.share_of_rank("external_work", comm);
-    absolute_external = state.share_of_rank("absolute_work", comm);
-    absorbed          = state.share_of_rank("stress_work", comm);
+    const auto sums = keyed_sums(*this);
+    for (unsigned int i = 0; i < sums.size(); ++i)
+      *sums[i].second =
+        i < n_required_sums || state.values.count(sums[i].first) != 0
+          ? state.share_of_rank(sums[i].first, comm)
+          : 0.;
   }
 } // namespace mpm

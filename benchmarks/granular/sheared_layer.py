@@ -23,6 +23,14 @@ is APIC's 4-cell answer, a guard on it, not the continuum's value.
   sheared_layer.py --exe ... --cells 1,2 --incline 10 --check
       on a face inclined at 10 degrees: deceleration within 2 % of
       g (mu cos - sin), and at rest at the end
+  sheared_layer.py --exe ... --cells 1,2,4 --rigid --friction-work slip
+      --max-residual 0.01 --check
+      the layer sliding without shear: the floor's friction work
+      (statistics column face_friction_work) within 2 % of mu M g times the
+      slip, and the energy residual at most 1 % of the energy put in
+  sheared_layer.py --exe ... --cells 4 --friction-work 0.630,0.03 --check
+      the sheared layer: the floor's friction work by t = 0.12 s within 3 %
+      of 0.630 J, what every transfer converges to (README.md)
   sheared_layer.py --exe ... --cells 4 --cfl 0.5,0.125 --check
       a ctest: the same run at each CFL number, the shears within 0.01 m/s
       of each other at every time (a transfer whose damping does not
@@ -63,6 +71,23 @@ def on_rigid_wall(h):
                   "rho*g*(y-%.17g); K0*rho*g*(y-%.17g); 0" % ((y0 + H,) * 3)]
 
 
+def friction_work(rows, rigid_wall):
+    """The work the floor's friction did by the last output (J, > 0 taken
+    out), the layer's slip times mu times its weight (the slip from the
+    mean velocity, exact for a layer that slides as one), and the energy
+    residual over the energy put in. A rigid wall's friction is external
+    work (its penalty force), the grid face's its own column."""
+    last = rows[-1]
+    work = -float(last["external_work" if rigid_wall else
+                       "face_friction_work"])
+    t = [float(row["time"]) for row in rows]
+    v = [float(row["momentum_x"]) / float(row["mass"]) for row in rows]
+    slip = sum(0.5 * (v[i] + v[i + 1]) * (t[i + 1] - t[i])
+               for i in range(len(t) - 1))
+    return work, MU * float(rows[0]["mass"]) * G * slip, \
+        float(last["energy_residual"])
+
+
 def run(exe, k, extra, incline=0, rigid_wall=False):
     """The layer over @p k cells; on a face inclined at @p incline degrees
     (gravity tilted, the layer sliding down it) the run lasts until well
@@ -92,13 +117,15 @@ def run(exe, k, extra, incline=0, rigid_wall=False):
     r = run_scene(exe, "granular/sheared_layer.prm", [
         "-s", "Grid/upper corner=%.17g, %.17g" % (length, y0 + H + 4 * h),
         "-s", "Grid/cells=%d, %d" % (round(length / h),
-                                     k + 4 + round(y0 / h))] + scene +
+                                     k + 4 + round(y0 / h)),
+        "-s", "Simulation/energy residual=true"] + scene +
         extra, **frames)
     speed = [float(row["momentum_x"]) / float(row["mass"]) for row in r.rows]
     deceleration = (speed[1] - speed[5]) / 0.08
     if incline != 0:
         return deceleration, float(r.rows[-1]["kinetic_energy"]) / \
             float(r.rows[0]["kinetic_energy"])
+    energy = friction_work(r.rows, rigid_wall)
     shear = []
     for points, fields in zip(r.points, r.fields):
         v = fields["velocity"]
@@ -112,8 +139,8 @@ def run(exe, k, extra, incline=0, rigid_wall=False):
         # penalty contact, a few per cent at first.
         tangential = sum(float(row["wall0_force_x"]) for row in r.rows[2:6])
         normal = sum(float(row["wall0_force_y"]) for row in r.rows[2:6])
-        return deceleration, shear[1:6], -tangential / normal
-    return deceleration, shear[1:6], None
+        return deceleration, shear[1:6], -tangential / normal, energy
+    return deceleration, shear[1:6], None, energy
 
 
 def main():
@@ -135,13 +162,25 @@ def main():
     parser.add_argument("--rigid-wall", action="store_true",
                         help="the layer on a rigid wall with friction mu "
                              "instead of the grid's friction face")
+    parser.add_argument("--rigid", action="store_true",
+                        help="the layer starts sliding at 1 m/s without "
+                             "shear")
+    parser.add_argument("--friction-work", default="",
+                        help="what --check asks of the floor's friction "
+                             "work: 'slip' (mu M g times the slip, within "
+                             "2 %%: a layer sliding as one) or 'REF,TOL' "
+                             "(J, relative)")
+    parser.add_argument("--max-residual", type=float, default=None,
+                        help="the most energy residual --check allows, "
+                             "over the energy put in")
     parser.add_argument("--check", action="store_true")
     a = parser.parse_args()
     if a.incline != 0:
         return inclined(a)
     cfls = [float(x) for x in a.cfl.split(",")] if a.cfl else [None]
     print("cells_across,cfl,deceleration,mu_g,error,shear_0.02,shear_0.04,"
-          "shear_0.06,shear_0.08,shear_0.1,wall_tangential_over_normal")
+          "shear_0.06,shear_0.08,shear_0.1,wall_tangential_over_normal,"
+          "friction_work,mu_weight_slip,energy_residual")
     ok = True
     for k in [int(x) for x in a.cells.split(",")]:
         shears = []
@@ -149,13 +188,17 @@ def main():
             extra = overrides(a)
             if cfl is not None:
                 extra += ["-s", "Simulation/CFL number=%g" % cfl]
-            deceleration, shear, ratio = run(a.exe, k, extra,
-                                             rigid_wall=a.rigid_wall)
+            if a.rigid:
+                extra += ["-s", "Bodies/Body 0/initial velocity=1; 0"]
+            deceleration, shear, ratio, energy = run(
+                a.exe, k, extra, rigid_wall=a.rigid_wall)
             error = deceleration / (MU * G) - 1
-            print("%d,%s,%.4f,%.4f,%.2e,%s,%s" % (
+            print("%d,%s,%.4f,%.4f,%.2e,%s,%s,%.4f,%.4f,%.4f" % ((
                 k, "" if cfl is None else "%g" % cfl, deceleration, MU * G,
                 error, ",".join("%.3f" % x for x in shear),
-                "" if ratio is None else "%.6f" % ratio), flush=True)
+                "" if ratio is None else "%.6f" % ratio) + energy),
+                flush=True)
+            ok = ok and energy_checks(a, energy)
             if ratio is None:
                 ok = ok and abs(error) <= 0.02
             else:
@@ -179,8 +222,23 @@ def main():
         print("FAILED: the deceleration is off mu g by more than 2 % (5 % "
               "on a rigid wall, whose force ratio must be mu within 2 %), "
               "or the shear at t = 0.04 s is outside --shear, or the shears "
-              "at different CFL numbers differ by more than 0.01 m/s")
+              "at different CFL numbers differ by more than 0.01 m/s, or "
+              "the friction work or the energy residual is off "
+              "(--friction-work, --max-residual)")
         sys.exit(1)
+
+
+def energy_checks(a, energy):
+    """The floor's friction work against --friction-work, the energy
+    residual against --max-residual."""
+    work, mu_weight_slip, residual = energy
+    ok = a.max_residual is None or residual <= a.max_residual
+    if a.friction_work == "slip":
+        ok = ok and abs(work / mu_weight_slip - 1) <= 0.02
+    elif a.friction_work:
+        reference, tolerance = [float(x) for x in a.friction_work.split(",")]
+        ok = ok and abs(work / reference - 1) <= tolerance
+    return ok
 
 
 def inclined(a):

@@ -4,6 +4,7 @@
 #include <mpm/checkpoint.h>
 #include <mpm/material_points.h>
 #include <mpm/statistics.h>
+#include <mpm/work_account.h>
 
 #include <string>
 
@@ -40,8 +41,12 @@ namespace mpm
    *   R(t) = E(t) - Psi(t) + Psi(0) + W_sigma(t) - E(0) - W(t),
    *
    * which plasticity cannot offset (elastic, W_sigma = Psi(t) - Psi(0) to
-   * the order of its quadrature). Only the transfer, walls, friction,
-   * damping and absorbing faces lower it. It is held to the same bound.
+   * the order of its quadrature). The work the grid takes out on purpose,
+   * W_g(t) (friction and the other rules of the grid's faces, damping:
+   * WorkAccount::face_friction, face_constraint, damping), is taken out
+   * of it too, so that R is the numerics' share alone: the transfer's,
+   * contact between bodies', and what the time stepping makes. It is
+   * held to the same bound.
    *
    * The balance is
    * checked at output times, where the statistics are summed anyway; the
@@ -61,22 +66,18 @@ namespace mpm
 
     /**
      * Check the balance at time @p t with the statistics @p s and the
-     * external work @p work (and its absolute sum @p absolute_work) done
-     * since the start; collective. With the energy residual, also the
-     * balance in which the work the stresses absorbed, @p stress_work
-     * (WorkAccount::absorbed), replaces the change of strain
-     * energy. Throws RunError with a diagnosis. Returns E_in(t), the
-     * energy residual R(t) and the dissipation W_sigma(t) - Psi(t) +
-     * Psi(0), the work the stresses absorbed and do not store (plastic,
-     * viscous, damage; both 0 without the residual), also when the guard
-     * is off. Then E(t) - E(0) = W(t) - D(t) + R(t).
+     * sums of @p work since the start (WorkAccount::totals(): the external
+     * work W and its absolute sum); collective. With the energy residual,
+     * also the balance in which the work the stresses absorbed replaces
+     * the change of strain energy and the grid's work W_g is taken out.
+     * Throws RunError with a diagnosis. Returns E_in(t), the energy
+     * residual R(t) and the dissipation W_sigma(t) - Psi(t) + Psi(0), the
+     * work the stresses absorbed and do not store (plastic, viscous,
+     * damage; both 0 without the residual), also when the guard is off.
+     * Then E(t) - E(0) = W(t) - D(t) + W_g(t) + R(t).
      */
     std::array<double, 3>
-    check(const Statistics<dim> &s,
-          const double           work,
-          const double           absolute_work,
-          const double           stress_work,
-          const double           t);
+    check(const Statistics<dim> &s, const WorkAccount &work, const double t);
 
     void
     save_state(RunState &state) const;

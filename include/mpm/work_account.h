@@ -3,8 +3,6 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <array>
-
 namespace mpm
 {
   struct RunState;
@@ -13,20 +11,30 @@ namespace mpm
    * The running sums of the energy balance (see EnergyGuard), kept in one
    * place: the work done on the bodies from outside (ExternalLoads closes
    * each step's into it), the sum of that work's absolute step increments,
-   * and the work the bodies' stresses absorbed (StressUpdate, with
-   * 'Simulation/energy residual'). Each rank holds its share; the totals
-   * are sums over the ranks. A checkpoint keeps the totals, and a restart,
-   * which may run on another number of ranks, gives them to the first.
+   * the work the bodies' stresses absorbed (StressUpdate), and, with
+   * 'Simulation/energy residual', the work of what only takes energy out
+   * at the grid (GridUpdate): friction on the grid's friction faces, the
+   * other face rules, and the damping. Each rank holds its share; the
+   * totals are sums over the ranks. A checkpoint keeps the totals, and a
+   * restart, which may run on another number of ranks, gives them to the
+   * first.
    */
   struct WorkAccount
   {
     double external          = 0;
     double absolute_external = 0;
     double absorbed          = 0;
+    /// Coulomb friction of the grid's friction faces (<= 0).
+    double face_friction = 0;
+    /// The other face rules: the velocity into fixed, slip and friction
+    /// faces taken out, fixed faces' tangential hold, the absorbing
+    /// faces' dashpots (<= 0).
+    double face_constraint = 0;
+    /// Global and local (Cundall) damping (<= 0).
+    double damping = 0;
 
-    /// {external, absolute_external, absorbed} summed over the ranks
-    /// (collective).
-    std::array<double, 3>
+    /// Every sum over the ranks (collective).
+    WorkAccount
     totals(const MPI_Comm comm) const;
 
     /// Put the totals into @p state (collective), or take them back.

@@ -8,6 +8,28 @@
 
 namespace mpm
 {
+  namespace
+  {
+    /**
+     * The work of a face's impulse m (v_after - v_before) on one velocity
+     * component of a node at the force update: at the mean of the node's
+     * velocity at the step's start, @p v_old, and at its end, @p v_after.
+     * So split, the works of all the forces on a node (its stress, the
+     * loads, the damping, the faces) add up to its change of kinetic
+     * energy. A node the face holds at rest takes its support without
+     * work; it is not the energy of the velocity it would have had.
+     */
+    inline double
+    impulse_work(const double m,
+                 const double v_before,
+                 const double v_after,
+                 const double v_old)
+    {
+      return m * (v_after - v_before) * 0.5 * (v_old + v_after);
+    }
+  } // namespace
+
+
   template <int dim>
   GridFaces<dim>::GridFaces(const BackgroundGrid<dim>              &grid,
                             const std::vector<BodyParameters<dim>> &bodies)
@@ -90,22 +112,37 @@ namespace mpm
   GridFaces<dim>::apply(double            *u,
                         const unsigned int n_fields,
                         const unsigned int slot,
-                        const double       dt) const
+                        const double       dt,
+                        WorkAccount       *work) const
   {
     using Layout                 = NodalLayout<dim>;
     constexpr unsigned int width = Layout::n_velocities;
     for (const auto &[i, mask] : constrained_nodes)
       for (unsigned int f = 0; f < n_fields; ++f)
-        for (unsigned int d = 0; d < dim; ++d)
-          if (mask & (1u << d))
-            u[width * Layout::slot_of(i, f, n_fields) + slot + d] = 0;
+        {
+          double *node = u + width * Layout::slot_of(i, f, n_fields);
+          for (unsigned int d = 0; d < dim; ++d)
+            if (mask & (1u << d))
+              {
+                if (work != nullptr)
+                  work->face_constraint +=
+                    impulse_work(node[Layout::node_mass],
+                                 node[slot + d],
+                                 0.,
+                                 node[Layout::v_old + d]);
+                node[slot + d] = 0;
+              }
+        }
     const double mu = grid.parameters().friction_coefficient;
     for (const auto &[i, faces] : friction_nodes)
       for (unsigned int f = 0; f < n_fields; ++f)
         for (unsigned int face = 0; face < 2 * dim; ++face)
           if (faces & (1u << face))
-            apply_coulomb_contact(
-              u + width * Layout::slot_of(i, f, n_fields) + slot, face, mu);
+            coulomb_contact_of_node(u + width * Layout::slot_of(i, f, n_fields),
+                                    slot,
+                                    face,
+                                    mu,
+                                    work);
     if (!(dt > 0))
       return;
     // The absorbing faces' dashpots act at the force update: the force
@@ -123,8 +160,43 @@ namespace mpm
           const double normal = 1. / (1. + dt * a.area * normal_impedance / m);
           const double shear  = 1. / (1. + dt * a.area * shear_impedance / m);
           for (unsigned int d = 0; d < dim; ++d)
-            node[slot + d] *= (d == a.face / 2) ? normal : shear;
+            {
+              const double before = node[slot + d];
+              node[slot + d] *= (d == a.face / 2) ? normal : shear;
+              if (work != nullptr)
+                work->face_constraint += impulse_work(m,
+                                                      before,
+                                                      node[slot + d],
+                                                      node[Layout::v_old + d]);
+            }
         }
+  }
+
+
+  template <int dim>
+  void
+  GridFaces<dim>::coulomb_contact_of_node(double            *node,
+                                          const unsigned int slot,
+                                          const unsigned int face,
+                                          const double       mu,
+                                          WorkAccount       *work)
+  {
+    double *v = node + slot;
+    if (work == nullptr)
+      {
+        apply_coulomb_contact(v, face, mu);
+        return;
+      }
+    // The normal impulse is the constraint's, the tangential one
+    // friction's.
+    const unsigned int axis = face / 2;
+    double             before[dim];
+    std::copy(v, v + dim, before);
+    apply_coulomb_contact(v, face, mu);
+    const double m = node[NodalLayout<dim>::node_mass];
+    for (unsigned int d = 0; d < dim; ++d)
+      (d == axis ? work->face_constraint : work->face_friction) +=
+        impulse_work(m, before[d], v[d], node[NodalLayout<dim>::v_old + d]);
   }
 
 

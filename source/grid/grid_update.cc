@@ -8,6 +8,28 @@
 
 namespace mpm
 {
+  namespace
+  {
+    /**
+     * One component of the force update's velocity before the
+     * constraints: v_old + dt / m (f + f_d), with Cundall's local damping
+     * f_d = -alpha |f| sign(v_old) (none at rest, where sign(v) = 0),
+     * times @p damping_factor = 1 / (1 + c dt), the global damping taken
+     * implicitly (stable for any c).
+     */
+    inline double
+    damped_velocity(const double v_old,
+                    const double dt_m,
+                    const double f,
+                    const double alpha,
+                    const double damping_factor)
+    {
+      const double f_d = -alpha * std::abs(f) * ((v_old > 0) - (v_old < 0));
+      return (v_old + dt_m * (f + f_d)) * damping_factor;
+    }
+  } // namespace
+
+
   template <int dim>
   GridUpdate<dim>::GridUpdate(const StepParts<dim> &parts,
                               ExternalLoads<dim>   &loads,
@@ -20,6 +42,8 @@ namespace mpm
     , contact(parts.contact)
     , virtual_fluid(parts.virtual_fluid)
     , loads(loads)
+    , work(parts.work)
+    , account_grid_work(parts.parameters.energy_residual)
     , light_mass(light_mass)
     , context(parts.context)
   {
@@ -88,15 +112,8 @@ namespace mpm
         // vel[node_mass] is the scaled inertia (mass scaling).
         const double dt_m = vel[node_mass] > 0 ? dt / vel[node_mass] : 0.;
         for (unsigned int d = 0; d < dim; ++d)
-          {
-            double f = node[force + d];
-            // Cundall: the unbalanced force loses alpha |f| against the
-            // motion (none at rest, where sign(v) = 0).
-            if (alpha > 0)
-              f -= alpha * std::abs(f) *
-                   ((vel[v_old + d] > 0) - (vel[v_old + d] < 0));
-            vel[v_new + d] = (vel[v_old + d] + dt_m * f) * damping_factor;
-          }
+          vel[v_new + d] = damped_velocity(
+            vel[v_old + d], dt_m, node[force + d], alpha, damping_factor);
       }
     // A loop of its own, so that the plain step's stays as it was.
     if (newmark)
@@ -108,6 +125,8 @@ namespace mpm
                              motion_factor * (vel[v_new + d] - vel[v_old + d]);
         }
     apply_constraints(v_new, dt);
+    if (account_grid_work && (prm.damping > 0 || alpha > 0))
+      work.damping += damping_work(dt);
     if (measure_out_of_balance)
       local_out_of_balance = out_of_balance_force(dt);
     nodes.velocities.update_ghost_values();
@@ -171,8 +190,8 @@ namespace mpm
                                    ((v_old_d > 0) - (v_old_d < 0));
                 // v_new as the force update made it, before the
                 // constraints.
-                const double free_v_new =
-                  (v_old_d + dt_m * (sum_i[force + d] + f_d)) * damping_factor;
+                const double free_v_new = damped_velocity(
+                  v_old_d, dt_m, sum_i[force + d], alpha, damping_factor);
                 const bool constrained =
                   std::abs(v_new_d - free_v_new) >
                   1e-12 * (std::abs(free_v_new) + std::abs(v_old_d)) + 1e-300;
@@ -182,6 +201,42 @@ namespace mpm
               }
           }
         sum += node_force.norm();
+      }
+    return sum;
+  }
+
+
+  /**
+   * The damping's impulse on a node, m (v_damped - v_old - dt f / m), works
+   * at the mean of the node's velocities at the step's start and end (as
+   * the faces' impulses do, see GridFaces::apply()): after the
+   * constraints, so that a node a face holds at rest takes no damping
+   * work either. Exact for Newmark's gamma = 1/2, where v_new is the
+   * step's end velocity.
+   */
+  template <int dim>
+  double
+  GridUpdate<dim>::damping_work(const double dt) const
+  {
+    const double *g              = nodes.sums.get_values();
+    const double *u              = nodes.velocities.get_values();
+    const double  damping_factor = 1. / (1. + prm.damping * dt);
+    double        sum            = 0;
+    for (unsigned int i = 0; i < nodes.n_owned_slots(); ++i)
+      {
+        const double *node = g + n_sums * i;
+        const double *vel  = u + n_velocities * i;
+        const double  m    = vel[node_mass];
+        if (!(m > 0))
+          continue;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double v_0 = vel[v_old + d], f = node[force + d];
+            const double damped = damped_velocity(
+              v_0, dt / m, f, prm.local_damping, damping_factor);
+            sum +=
+              m * (damped - v_0 - dt / m * f) * 0.5 * (v_0 + vel[v_new + d]);
+          }
       }
     return sum;
   }
@@ -197,7 +252,15 @@ namespace mpm
       apply_contact(slot, dt, for_strain_rate);
     // Grid faces and the velocity region act on every field alike.
     double *u = nodes.velocities.get_values();
-    faces.apply(u, nodes.n_fields, slot, dt);
+    // Only the force update's corrections are the faces' work: after a
+    // transfer to the grid, FLIP's points keep what the faces take from
+    // the nodes (their increment is v_new - v_old), and what the other
+    // transfers lose there is the transfer's (the energy residual).
+    faces.apply(u,
+                nodes.n_fields,
+                slot,
+                dt,
+                account_grid_work && dt > 0 ? &work : nullptr);
     if (velocity_region.enabled())
       for (unsigned int f = 0; f < nodes.n_fields; ++f)
         loads.add_work(velocity_region.enforce(

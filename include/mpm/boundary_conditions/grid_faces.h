@@ -3,6 +3,7 @@
 
 #include <mpm/background_grid.h>
 #include <mpm/bodies/body_parameters.h>
+#include <mpm/work_account.h>
 
 #include <vector>
 
@@ -45,13 +46,18 @@ namespace mpm
      * Apply every face's rule to the nodal velocities at @p slot (an
      * offset in a node's entry of NodalLayout::n_velocities values) of
      * the @p n_fields fields of each node, in the interleaved array @p u.
-     * @p dt > 0 at the force update, where the dashpots act.
+     * @p dt > 0 at the force update, where the dashpots act. With @p work
+     * (only at the force update, @p slot v_new), the work of each rule's
+     * impulses goes to its sum (WorkAccount::face_friction,
+     * face_constraint), at the mean of the node's velocities at the
+     * step's start and end.
      */
     void
     apply(double            *u,
           const unsigned int n_fields,
           const unsigned int slot,
-          const double       dt) const;
+          const double       dt,
+          WorkAccount       *work = nullptr) const;
 
     /// Coulomb contact of the nodal velocity @p v with grid face @p face
     /// (f = x min, x max, y min, ...) of friction coefficient @p mu.
@@ -59,6 +65,17 @@ namespace mpm
     apply_coulomb_contact(double *v, const unsigned int face, const double mu);
 
   private:
+    /// Coulomb contact of the velocity in @p slot of the node @p node
+    /// (its entry of NodalLayout::n_velocities values) with @p face; with
+    /// @p work, the work of the normal impulse (a constraint's) and of the
+    /// tangential one (friction's).
+    static void
+    coulomb_contact_of_node(double            *node,
+                            const unsigned int slot,
+                            const unsigned int face,
+                            const double       mu,
+                            WorkAccount       *work);
+
     /// A node on an absorbing face: the face (x min, x max, y min, ...)
     /// and the share of its area the node's dashpots act on.
     struct AbsorbingNode

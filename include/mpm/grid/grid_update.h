@@ -24,7 +24,9 @@ namespace mpm
    * on them in this order: multi-body contact and rigid bodies, the
    * grid's faces (GridFaces), the velocity region. Where a constraint or
    * the virtual fluid does work on the bodies, it goes to the account of
-   * ExternalLoads.
+   * ExternalLoads; with 'Simulation/energy residual', the work of the
+   * grid's faces and of the damping (energy they only take out) goes to
+   * the WorkAccount at each force update.
    *
    * It reads and writes the shared NodalState and owns only what lives
    * between the two velocity updates of one step: which nodes' fields
@@ -92,6 +94,10 @@ namespace mpm
     /// over the nodes.
     double
     out_of_balance_force(const double dt) const;
+    /// The work the damping did on the owned nodes at the force update to
+    /// @p dt (after the constraints; see there).
+    double
+    damping_work(const double dt) const;
     /// Multi-body contact and rigid bodies at every owned node where a
     /// body has a field of its own; @p dt > 0 at the force update, where
     /// the rigid bodies' reactions are measured and where the fields press
@@ -122,8 +128,12 @@ namespace mpm
     /// Null, or a fluid acting on the bodies' surface (only if enabled).
     VirtualFluid<dim>  *virtual_fluid;
     ExternalLoads<dim> &loads;
-    const double        light_mass;
-    const StepContext  &context;
+    /// The energy balance's sums; the grid's own are kept only when
+    /// account_grid_work ('Simulation/energy residual').
+    WorkAccount       &work;
+    const bool         account_grid_work;
+    const double       light_mass;
+    const StepContext &context;
     /// MUSL with deformable bodies in contact only: per owned node, did
     /// their fields press on each other at this step's force update (see
     /// apply_contact())?
