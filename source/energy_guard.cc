@@ -22,7 +22,8 @@ namespace mpm
   std::array<double, 3>
   EnergyGuard<dim>::check(const Statistics<dim> &s,
                           const WorkAccount     &sums,
-                          const double           t)
+                          const double           t,
+                          const double           affine_energy)
   {
     const double work          = sums.external;
     const double absolute_work = sums.absolute_external;
@@ -39,6 +40,7 @@ namespace mpm
         initial_motion     = energy - gravity;
         initial_gravity    = gravity;
         initial_strain     = s.strain_energy;
+        initial_affine     = affine_energy;
         have_initial_state = true;
       }
     largest_release     = std::max(largest_release, initial_gravity - gravity);
@@ -46,7 +48,9 @@ namespace mpm
     const double gain   = energy - initial_energy - work;
     const double dissipation =
       with_residual ? stress_work - s.strain_energy + initial_strain : 0.;
-    const double residual = with_residual ? gain + dissipation - grid_work : 0.;
+    const double residual = with_residual ? gain + dissipation - grid_work +
+                                              affine_energy - initial_affine
+                                          : 0.;
     if (bound == 0)
       return {{put_in, residual, dissipation}};
     // Round-off of the sums (the gravitational energy is measured from the
@@ -135,6 +139,7 @@ namespace mpm
     state.values["energy_guard_initial_gravity"]    = initial_gravity;
     state.values["energy_guard_initial_strain"]     = initial_strain;
     state.values["energy_guard_largest_release"]    = largest_release;
+    state.values["energy_guard_initial_affine"]     = initial_affine;
   }
 
 
@@ -149,6 +154,9 @@ namespace mpm
     if (with_residual)
       initial_strain = state.get("energy_guard_initial_strain");
     largest_release = state.get("energy_guard_largest_release");
+    // Not in checkpoints written before the affine fields were counted.
+    if (state.values.count("energy_guard_initial_affine") != 0)
+      initial_affine = state.get("energy_guard_initial_affine");
   }
 
 

@@ -385,6 +385,8 @@ namespace mpm
                                   "damping_work",
                                   "energy_residual"})
         columns.push_back(c);
+    if (integrator_parameters.energy_residual && has_affine_field())
+      columns.push_back("affine_kinetic_energy");
     if (stage.staged())
       columns.push_back("stage");
     if (stage.any_equilibrium())
@@ -808,8 +810,13 @@ namespace mpm
     // output.
     stop_if_not_finite(s, extra);
     const WorkAccount work = integrator->work_account().totals(comm);
+    // Collective: only where the columns have it.
+    const double affine =
+      integrator_parameters.energy_residual && has_affine_field()
+        ? integrator->affine_kinetic_energy()
+        : 0.;
     const auto [put_in, residual, dissipation] =
-      energy_guard->check(s, work, integrator->time());
+      energy_guard->check(s, work, integrator->time(), affine);
     if (integrator_parameters.energy_residual)
       for (const double value : {work.external,
                                  dissipation,
@@ -818,6 +825,8 @@ namespace mpm
                                  work.damping,
                                  put_in > 0 ? residual / put_in : 0.})
         extra.push_back(value);
+    if (integrator_parameters.energy_residual && has_affine_field())
+      extra.push_back(affine);
     if (stage.staged())
       extra.push_back(stage.index);
     if (stage.any_equilibrium())

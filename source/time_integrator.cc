@@ -328,6 +328,34 @@ namespace mpm
   }
 
 
+  template <int dim>
+  double
+  TimeIntegrator<dim>::affine_kinetic_energy() const
+  {
+    const FieldLayout &l      = parts.points.layout();
+    double             energy = 0;
+    if (l.affine_velocity != FieldLayout::absent)
+      loop.with_scene_basis([&](const auto &basis) {
+        loop.for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+          if (parts.points.bodies()[q[l.body]].rigid_velocity)
+            return;
+          const double *C = q + l.affine_velocity;
+          double        e = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              double D = 0;
+              for (unsigned int k = 0; k < std::size(s.w1[d]); ++k)
+                D += s.w1[d][k] * s.offset1(d, k) * s.offset1(d, k);
+              for (unsigned int i = 0; i < dim; ++i)
+                e += D * C[i * dim + d] * C[i * dim + d];
+            }
+          energy += 0.5 * q[l.mass] * e;
+        });
+      });
+    return Utilities::MPI::sum(energy, context.comm);
+  }
+
+
   template class TimeIntegrator<1>;
   template class TimeIntegrator<2>;
   template class TimeIntegrator<3>;

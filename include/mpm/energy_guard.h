@@ -74,10 +74,15 @@ namespace mpm
      * residual R(t) and the dissipation W_sigma(t) - Psi(t) + Psi(0), the
      * work the stresses absorbed and do not store (plastic, viscous,
      * damage; both 0 without the residual), also when the guard is off.
-     * Then E(t) - E(0) = W(t) - D(t) + W_g(t) + R(t).
+     * Then E(t) - E(0) = W(t) - D(t) + W_g(t) + R(t). With APIC, the
+     * residual's kinetic energy includes the points' affine fields',
+     * @p affine_energy (TimeIntegrator::affine_kinetic_energy()).
      */
     std::array<double, 3>
-    check(const Statistics<dim> &s, const WorkAccount &work, const double t);
+    check(const Statistics<dim> &s,
+          const WorkAccount     &work,
+          const double           t,
+          const double           affine_energy = 0);
 
     void
     save_state(RunState &state) const;
@@ -98,6 +103,7 @@ namespace mpm
     double                     initial_motion     = 0; ///< kinetic + strain
     double                     initial_strain     = 0;
     double                     initial_gravity    = 0;
+    double                     initial_affine     = 0;
     double                     largest_release    = 0;
   };
 } // namespace mpm

@@ -116,6 +116,13 @@ namespace mpm
     print_scene_summary() const;
     void
     write_output(const double wall_seconds);
+    /// Do the points carry APIC's affine velocity field (some stage's
+    /// transfer keeps it)? The energy residual then counts its energy.
+    bool
+    has_affine_field() const
+    {
+      return points->layout().affine_velocity != FieldLayout::absent;
+    }
     /// Stop the run if a value for statistics.csv is not finite.
     void
     stop_if_not_finite(const Statistics<dim>     &s,

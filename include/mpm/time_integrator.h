@@ -187,12 +187,24 @@ namespace mpm
     restore_state(const RunState &state);
 
     /// The energy balance's running sums: the external and the absorbed
-    /// work.
+    /// work, the grid's work.
     const WorkAccount &
     work_account() const
     {
       return work;
     }
+
+    /**
+     * APIC: the kinetic energy the points' affine velocity fields hold
+     * beyond 1/2 m_p |v_p|^2, sum_p 1/2 m_p sum_{i,d} D_pd C_pid^2, D_pd
+     * the basis' second moment sum_I N_I (x_I - x_p)_d^2 at the point (at
+     * the stencils the last step began with). It is what the transfer to
+     * the grid gives the nodes besides: the energy the transfer keeps or
+     * loses is that of v_p + C_p (x - x_p) (Jiang et al. 2017). Deformable
+     * bodies only; 0 without an affine field. Collective.
+     */
+    double
+    affine_kinetic_energy() const;
 
     /**
      * The two sides of the identity that makes the internal forces' work
