@@ -523,17 +523,17 @@ endif()
 #    A layer sliding as one at 1 m/s: the face's work is mu M g times the
 #    slip within 2 % and the energy residual (the numerics' share, now
 #    without the faces' work) at most 1 % of the energy put in (measured:
-#    FLIP with the relaxation time -0.7/-0.5/-0.5 % and residual +0.1 to
-#    +0.3 % on 1/2/4 cells; APIC -1.3/-0.8 % and -0.3/0.0 % on 2/4 cells.
-#    On 1 cell APIC's face takes 2.9 % too little: the floor's friction
-#    gives the bottom points a shear C_xy, and their affine field brings
-#    the floor nodes less than the points' slip; not asserted).
+#    FLIP with the relaxation time -0.75/-0.52/-0.51 % and residual -0.15
+#    to -0.02 % on 1/2/4 cells; APIC -1.3/-0.8 % and -0.6/-0.3 % on 2/4
+#    cells. On 1 cell APIC's face takes 2.9 % too little: the floor's
+#    friction gives the bottom points a shear C_xy, and their affine field
+#    brings the floor nodes less than the points' slip; not asserted).
 #    The sheared layer (4 cells, FLIP with the relaxation time, each smooth
 #    basis): the face's work by t = 0.12 s within 3 % of 0.630 J, where
-#    every transfer and basis converges (8 cells: FLIP 0.630-0.632, APIC
-#    0.607-0.623; measured here +1.3 to +2.1 %), and a residual of at most
-#    2 % (measured -0.9 to +1.3 %). APIC falls 3-10 % short at 4 cells and
-#    19-37 % at 1-2 (benchmarks/granular/README.md). Release only (9 s
+#    every transfer and basis converges (8 cells: FLIP 0.630-0.631, APIC
+#    0.606-0.622; measured here +1.2 to +2.1 %), and a residual of at most
+#    2 % (measured -1.3 to -0.9 %). APIC falls 3-10 % short at 4 cells and
+#    10-38 % at 1-2 (benchmarks/granular/README.md). Release only (9 s
 #    each).
 #    APIC's energy is that of the points' affine fields v_p + C_p (x - x_p):
 #    the energy residual counts 1/2 m_p D_p : C_p C_p (column
