@@ -24,7 +24,10 @@ namespace mpm
                     const double alpha,
                     const double damping_factor)
     {
-      const double f_d = -alpha * std::abs(f) * ((v_old > 0) - (v_old < 0));
+      // Without local damping (the common case) f_d is skipped, not
+      // computed as zero: this runs for every node and field each step.
+      const double f_d =
+        alpha > 0 ? -alpha * std::abs(f) * ((v_old > 0) - (v_old < 0)) : 0.;
       return (v_old + dt_m * (f + f_d)) * damping_factor;
     }
   } // namespace
