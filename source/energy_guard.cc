@@ -29,7 +29,7 @@ namespace mpm
     const double absolute_work = sums.absolute_external;
     const double stress_work   = sums.absorbed;
     const double grid_work =
-      sums.face_friction + sums.face_constraint + sums.damping;
+      sums.face_friction + sums.face_constraint + sums.damping + sums.contact;
     const double gravity =
       s.gravitational_energy - s.rigid_gravitational_energy;
     const double energy =

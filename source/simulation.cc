@@ -385,6 +385,8 @@ namespace mpm
                                   "damping_work",
                                   "energy_residual"})
         columns.push_back(c);
+    if (integrator_parameters.energy_residual && contact->n_fields() > 1)
+      columns.push_back("contact_work");
     if (integrator_parameters.energy_residual && has_affine_field())
       columns.push_back("affine_kinetic_energy");
     if (stage.staged())
@@ -825,6 +827,8 @@ namespace mpm
                                  work.damping,
                                  put_in > 0 ? residual / put_in : 0.})
         extra.push_back(value);
+    if (integrator_parameters.energy_residual && contact->n_fields() > 1)
+      extra.push_back(work.contact);
     if (integrator_parameters.energy_residual && has_affine_field())
       extra.push_back(affine);
     if (stage.staged())

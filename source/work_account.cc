@@ -9,20 +9,21 @@ namespace mpm
   namespace
   {
     /// Each sum with its key in a checkpoint's state.txt. The grid's
-    /// work (the last three) was not accounted by older
+    /// work (the last four) was not accounted by older
     /// checkpoints: missing there, it starts from 0.
     template <typename Account>
     auto
     keyed_sums(Account &a)
     {
       using Sum = decltype(&a.external);
-      return std::array<std::pair<const char *, Sum>, 6>{
+      return std::array<std::pair<const char *, Sum>, 7>{
         {{"external_work", &a.external},
          {"absolute_work", &a.absolute_external},
          {"stress_work", &a.absorbed},
          {"face_friction_work", &a.face_friction},
          {"face_constraint_work", &a.face_constraint},
-         {"damping_work", &a.damping}}};
+         {"damping_work", &a.damping},
+         {"contact_work", &a.contact}}};
     }
     constexpr unsigned int n_required_sums = 3;
   } // namespace

@@ -12,6 +12,12 @@ disk normal to the incline (bouncing) over that interval.
   rolling_disk.py --exe build/dealii-mpm --mu 0,1 --cells 5,10
   rolling_disk.py --exe ... --mu 0 --check --max-error 0.02
   rolling_disk.py --exe ... --mu 1 --floor-density 1000,1,1e-300 --check
+  rolling_disk.py --exe ... --mu 0,0.1 --friction-work --check
+      also the contact's work (statistics column contact_work, with the
+      energy residual): within 2 % of mu N times the slip of the disk's
+      contact point, v_x + omega_z R integrated over time (omega from the
+      disk's angular momentum about its centre; no more than 0.01 J where
+      mu = 0), and the energy residual within 1 % of the energy put in
 
 The floor is a prescribed (rigid) body: its density must not change the
 disk's motion. With several --floor-density values, --check also asserts
@@ -35,6 +41,29 @@ def exact(mu):
     return max(0, G * (math.sin(THETA) - mu * math.cos(THETA)))
 
 
+def friction_work(rows, mu, disk_mass):
+    """The contact's work by the last row (J, > 0 taken out), mu N times
+    the slip of the disk's contact point (its centre stays at y = 0.14 on
+    the floor's top, 0.04), and the energy residual over the energy put
+    in."""
+    slip_rate, t = [], []
+    for row in rows:
+        v_x = float(row["momentum_x"]) / disk_mass
+        v_y = float(row["momentum_y"]) / disk_mass
+        x_c = 0.5 * (float(row["body0_x_front_min"]) +
+                     float(row["body0_x_front_max"]))
+        spin = float(row["angular_momentum_z"]) - disk_mass * (
+            x_c * v_y - 0.14 * v_x)
+        omega = spin / (0.5 * disk_mass * RADIUS ** 2)
+        slip_rate.append(v_x + omega * RADIUS)
+        t.append(float(row["time"]))
+    slip = sum(0.5 * (slip_rate[i] + slip_rate[i + 1]) * (t[i + 1] - t[i])
+               for i in range(len(t) - 1))
+    normal = disk_mass * G * math.cos(THETA)
+    return -float(rows[-1]["contact_work"]), mu * normal * slip, \
+        float(rows[-1]["energy_residual"])
+
+
 def run(exe, mu, per_radius, floor_density, extra):
     n = per_radius
     r = run_scene(exe, "contact/rolling_disk.prm", [
@@ -49,7 +78,9 @@ def run(exe, mu, per_radius, floor_density, extra):
         if t >= 0.05 - 1e-9:
             samples.append((t, float(row["momentum_x"]) / m))
             bounce = max(bounce, abs(float(row["momentum_y"]) / m))
-    return least_squares_slope(samples), bounce
+    energy = friction_work(r.rows, mu, m) \
+        if "contact_work" in r.rows[0] else None
+    return least_squares_slope(samples), bounce, energy
 
 
 def main():
@@ -62,21 +93,35 @@ def main():
                         help="cells across the disk's radius")
     parser.add_argument("--check", action="store_true")
     parser.add_argument("--max-error", type=float, default=0.02)
+    parser.add_argument("--friction-work", action="store_true",
+                        help="account the energy (the energy residual) and "
+                             "check the contact's work against mu N times "
+                             "the slip")
     parser.add_argument("--floor-density", default="1000",
                         help="densities of the rigid floor (comma-separated)")
     a = parser.parse_args()
     print("mu,cells_per_radius,floor_density,acceleration,exact,relative_error,"
-          "max_normal_speed")
+          "max_normal_speed,contact_work,mu_normal_slip,energy_residual")
+    extra = overrides(a)
+    if a.friction_work:
+        extra += ["-s", "Simulation/energy residual=true"]
     ok = True
     for mu in [float(x) for x in a.mu.split(",")]:
         for n in [int(x) for x in a.cells.split(",")]:
             by_density = []
             for rho in a.floor_density.split(","):
-                acceleration, bounce = run(a.exe, mu, n, rho, overrides(a))
+                acceleration, bounce, energy = run(a.exe, mu, n, rho, extra)
                 e = acceleration / exact(mu) - 1
-                print("%g,%d,%s,%.4f,%.4f,%.2e,%.3f" % (
-                    mu, n, rho, acceleration, exact(mu), e, bounce), flush=True)
+                print("%g,%d,%s,%.4f,%.4f,%.2e,%.3f,%s" % (
+                    mu, n, rho, acceleration, exact(mu), e, bounce,
+                    ",,," if energy is None else "%.4f,%.4f,%.4f" % energy),
+                    flush=True)
                 ok = ok and abs(e) <= a.max_error
+                if energy is not None:
+                    work, expected, residual = energy
+                    ok = ok and abs(residual) <= 0.01 and (
+                        abs(work) <= 0.01 if mu == 0 else
+                        abs(work / expected - 1) <= 0.02)
                 by_density.append(acceleration)
             spread = max(by_density) - min(by_density)
             if spread > 1e-9 * abs(by_density[0]):
@@ -84,7 +129,9 @@ def main():
                       % spread)
                 ok = False
     if a.check and not ok:
-        print("FAILED: an acceleration is off by more than %g" % a.max_error)
+        print("FAILED: an acceleration is off by more than %g, or the "
+              "contact's work or the energy residual is off "
+              "(--friction-work)" % a.max_error)
         sys.exit(1)
 
 

@@ -42,10 +42,11 @@ namespace mpm
    *
    * which plasticity cannot offset (elastic, W_sigma = Psi(t) - Psi(0) to
    * the order of its quadrature). The work the grid takes out on purpose,
-   * W_g(t) (friction and the other rules of the grid's faces, damping:
-   * WorkAccount::face_friction, face_constraint, damping), is taken out
-   * of it too, so that R is the numerics' share alone: the transfer's,
-   * contact between bodies', and what the time stepping makes. It is
+   * W_g(t) (friction and the other rules of the grid's faces, damping,
+   * contact with rigid bodies: WorkAccount::face_friction,
+   * face_constraint, damping, contact), is taken out of it too, so that R
+   * is the numerics' share: the transfer's, contact between deformable
+   * bodies', and what the time stepping makes. It is
    * held to the same bound.
    *
    * The balance is

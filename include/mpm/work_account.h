@@ -14,10 +14,10 @@ namespace mpm
    * the work the bodies' stresses absorbed (StressUpdate), and, with
    * 'Simulation/energy residual', the work of what only takes energy out
    * at the grid (GridUpdate): friction on the grid's friction faces, the
-   * other face rules, and the damping. Each rank holds its share; the
-   * totals are sums over the ranks. A checkpoint keeps the totals, and a
-   * restart, which may run on another number of ranks, gives them to the
-   * first.
+   * other face rules, the damping, and contact between bodies. Each rank holds
+   * its share; the totals are sums over the ranks. A checkpoint keeps the
+   * totals, and a restart, which may run on another number of ranks, gives them
+   * to the first.
    */
   struct WorkAccount
   {
@@ -32,6 +32,12 @@ namespace mpm
     double face_constraint = 0;
     /// Global and local (Cundall) damping (<= 0).
     double damping = 0;
+    /// Contact with rigid bodies: the work of its impulses on the
+    /// deformable bodies' fields where a rigid body takes part, less the
+    /// rigid bodies' own work (external): what the inelastic closing and
+    /// the friction against them take out (<= 0). Contact between
+    /// deformable bodies stays in the energy residual.
+    double contact = 0;
 
     /// Every sum over the ranks (collective).
     WorkAccount

@@ -94,6 +94,13 @@ namespace mpm
       return body_field[body];
     }
 
+    /// Is field @p f a rigid body's (its velocity prescribed)?
+    bool
+    is_rigid_field(const unsigned int f) const
+    {
+      return rigid_of_field[f] >= 0;
+    }
+
     void
     set_time(const double t);
 

@@ -106,6 +106,11 @@ namespace mpm
     apply_contact(const unsigned int slot,
                   const double       dt,
                   const bool         for_strain_rate);
+    /// The contact's work on a node's deformable fields at the force
+    /// update (see there).
+    double
+    contact_work_on_deformable_fields(const std::vector<double> &before,
+                                      const double              *node) const;
 
     using Layout                               = NodalLayout<dim>;
     static constexpr unsigned int mass         = Layout::mass;
