@@ -85,8 +85,8 @@ namespace mpm
             << stress_work
             << " J of it, beyond their initial energy and the work done on "
                "them"
-            << (grid_work != 0 ? " and taken out by the grid's faces and the "
-                                 "damping"
+            << (grid_work != 0 ? " and taken out by the grid's faces, the "
+                                 "damping and contact with rigid bodies"
                                : "")
             << "), ";
         stop(msg,

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <utility>
+#include <vector>
 
 namespace mpm
 {
@@ -32,11 +33,17 @@ namespace mpm
   WorkAccount
   WorkAccount::totals(const MPI_Comm comm) const
   {
-    WorkAccount total;
-    const auto  mine = keyed_sums(*this);
-    const auto  sums = keyed_sums(total);
-    for (unsigned int i = 0; i < mine.size(); ++i)
-      *sums[i].second = Utilities::MPI::sum(*mine[i].second, comm);
+    WorkAccount         total;
+    const auto          mine = keyed_sums(*this);
+    const auto          sums = keyed_sums(total);
+    std::vector<double> values;
+    for (const auto &[key, sum] : mine)
+      values.push_back(*sum);
+    // One reduction for all the sums.
+    MPI_Allreduce(
+      MPI_IN_PLACE, values.data(), values.size(), MPI_DOUBLE, MPI_SUM, comm);
+    for (unsigned int i = 0; i < sums.size(); ++i)
+      *sums[i].second = values[i];
     return total;
   }
 

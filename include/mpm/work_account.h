@@ -8,14 +8,34 @@ namespace mpm
   struct RunState;
 
   /**
+   * The work of an impulse m (v_after - v_before) on one velocity
+   * component of a node at the force update (a face's, the damping's, the
+   * contact's): at the mean of the node's velocity at the step's start,
+   * @p v_old, and at its end, @p v_end. So split, the works of all the
+   * forces on a node (its stress, the loads, the damping, the faces, the
+   * contact) add up to its change of kinetic energy, and a node a face
+   * holds at rest takes its support without work (not the energy of the
+   * velocity it would have had).
+   */
+  inline double
+  impulse_work(const double m,
+               const double v_before,
+               const double v_after,
+               const double v_old,
+               const double v_end)
+  {
+    return m * (v_after - v_before) * 0.5 * (v_old + v_end);
+  }
+
+  /**
    * The running sums of the energy balance (see EnergyGuard), kept in one
    * place: the work done on the bodies from outside (ExternalLoads closes
    * each step's into it), the sum of that work's absolute step increments,
    * the work the bodies' stresses absorbed (StressUpdate), and, with
-   * 'Simulation/energy residual', the work of what only takes energy out
-   * at the grid (GridUpdate): friction on the grid's friction faces, the
-   * other face rules, the damping, and contact between bodies. Each rank holds
-   * its share; the totals are sums over the ranks. A checkpoint keeps the
+   * 'Simulation/energy residual', the work of what takes energy out at
+   * the grid (GridUpdate): friction on the grid's friction faces, the
+   * other face rules, the damping, and contact with rigid bodies. Each rank
+   * holds its share; the totals are sums over the ranks. A checkpoint keeps the
    * totals, and a restart, which may run on another number of ranks, gives them
    * to the first.
    */
@@ -28,7 +48,8 @@ namespace mpm
     double face_friction = 0;
     /// The other face rules: the velocity into fixed, slip and friction
     /// faces taken out, fixed faces' tangential hold, the absorbing
-    /// faces' dashpots (<= 0).
+    /// faces' dashpots (mostly <= 0; of either sign at O(dt) where nodes
+    /// lift off and land within a step).
     double face_constraint = 0;
     /// Global and local (Cundall) damping (<= 0).
     double damping = 0;

@@ -8,26 +8,6 @@
 
 namespace mpm
 {
-  namespace
-  {
-    /**
-     * The work of a face's impulse m (v_after - v_before) on one velocity
-     * component of a node at the force update: at the mean of the node's
-     * velocity at the step's start, @p v_old, and at its end, @p v_after.
-     * So split, the works of all the forces on a node (its stress, the
-     * loads, the damping, the faces) add up to its change of kinetic
-     * energy. A node the face holds at rest takes its support without
-     * work; it is not the energy of the velocity it would have had.
-     */
-    inline double
-    impulse_work(const double m,
-                 const double v_before,
-                 const double v_after,
-                 const double v_old)
-    {
-      return m * (v_after - v_before) * 0.5 * (v_old + v_after);
-    }
-  } // namespace
 
 
   template <int dim>
@@ -125,11 +105,11 @@ namespace mpm
             if (mask & (1u << d))
               {
                 if (work != nullptr)
-                  work->face_constraint +=
-                    impulse_work(node[Layout::node_mass],
-                                 node[slot + d],
-                                 0.,
-                                 node[Layout::v_old + d]);
+                  work->face_constraint += impulse_work(node[Layout::node_mass],
+                                                        node[slot + d],
+                                                        0.,
+                                                        node[Layout::v_old + d],
+                                                        0.);
                 node[slot + d] = 0;
               }
         }
@@ -167,7 +147,8 @@ namespace mpm
                 work->face_constraint += impulse_work(m,
                                                       before,
                                                       node[slot + d],
-                                                      node[Layout::v_old + d]);
+                                                      node[Layout::v_old + d],
+                                                      node[slot + d]);
             }
         }
   }
@@ -195,8 +176,8 @@ namespace mpm
     apply_coulomb_contact(v, face, mu);
     const double m = node[NodalLayout<dim>::node_mass];
     for (unsigned int d = 0; d < dim; ++d)
-      (d == axis ? work->face_constraint : work->face_friction) +=
-        impulse_work(m, before[d], v[d], node[NodalLayout<dim>::v_old + d]);
+      (d == axis ? work->face_constraint : work->face_friction) += impulse_work(
+        m, before[d], v[d], node[NodalLayout<dim>::v_old + d], v[d]);
   }
 
 

@@ -238,7 +238,7 @@ namespace mpm
             const double damped = damped_velocity(
               v_0, dt / m, f, prm.local_damping, damping_factor);
             sum +=
-              m * (damped - v_0 - dt / m * f) * 0.5 * (v_0 + vel[v_new + d]);
+              impulse_work(m, v_0 + dt / m * f, damped, v_0, vel[v_new + d]);
           }
       }
     return sum;
@@ -381,9 +381,11 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           {
             const double v_after = field[v_new + d];
-            sum += field[node_mass] *
-                   (v_after - before[n_velocities * f + v_new + d]) * 0.5 *
-                   (field[v_old + d] + v_after);
+            sum += impulse_work(field[node_mass],
+                                before[n_velocities * f + v_new + d],
+                                v_after,
+                                field[v_old + d],
+                                v_after);
           }
       }
     return sum;
