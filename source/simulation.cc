@@ -905,6 +905,7 @@ namespace mpm
         pcout << "  warning: " << w << std::endl;
     warn_of_pic_viscosity();
     warn_of_apic_at_rough_faces();
+    warn_of_rolling_resistance();
   }
 
 
@@ -1026,6 +1027,96 @@ namespace mpm
                 << std::endl;
           return;
         }
+  }
+
+
+  /**
+   * Friction turns a round body by its torque mu N R, and a flat under the
+   * body of half-width a resists rolling by up to N a: where a > mu R the
+   * body slides without turning. At the grid's friction faces and at rigid
+   * bodies friction acts on the nodes, and every node the body's stencils
+   * reach is held: a flat of sqrt(2 r h R) either side of the lowest point
+   * (r the basis' reach in cells). A round disk seeded from a mesh on the
+   * friction face: at mu = 0.1 it does not turn at 5-20 cells per radius;
+   * at mu = 0.5 it turns at 0 / 63 / 92 % of its rate at 5 / 10 / 20
+   * (flat < mu R from 12 on). A rigid wall acts on the points instead, and
+   * there the flat is the lattice's: the bottom row of a ball seeded on it
+   * is up to sqrt(2 s R) wide (s the points' spacing); a disk at mu = 0.1
+   * turns at 11 / 40 / 80 % of its rate with 10 / 20 / 40 points per
+   * radius, and seeded from a mesh at 80 / 89 / 93-95 % with 16 / 32 / 64
+   * mesh cells across its core, whatever the grid
+   * (benchmarks/contact/README.md). Said at the start, with the remedy.
+   */
+  template <int dim>
+  void
+  Simulation<dim>::warn_of_rolling_resistance() const
+  {
+    // The weakest friction that acts at all: a frictionless wall exerts no
+    // torque, and the weakest one turns the body least.
+    double      mu_at_nodes = 0, mu_at_points = 0;
+    std::string at_nodes;
+    auto        weakest = [](double &mu, const double candidate) {
+      const bool weaker = candidate > 0 && (mu == 0 || candidate < mu);
+      if (weaker)
+        mu = candidate;
+      return weaker;
+    };
+    for (unsigned int f = 0; f < 2 * dim; ++f)
+      if (grid_parameters.boundary[f] == BoundaryType::friction &&
+          weakest(mu_at_nodes, grid_parameters.friction_coefficient))
+        at_nodes = "'Grid/boundary " + face_name(f) + "' = friction";
+    for (const auto &body : body_parameters)
+      if (body.rigid_velocity &&
+          weakest(mu_at_nodes, contact_parameters.friction_coefficient))
+        at_nodes = "contact with a rigid body";
+    for (const auto &wall : rigid_wall_parameters)
+      weakest(mu_at_points, wall.friction_coefficient);
+
+    const double h = grid->min_cell_size();
+    for (unsigned int b = 0; b < body_parameters.size(); ++b)
+      {
+        const BodyParameters<dim> &body = body_parameters[b];
+        const double R = body.shape ? body.shape->rolling_radius() : 0.;
+        if (body.rigid_velocity || !(R > 0))
+          continue;
+        const double spacing    = h / body.particles_per_cell;
+        const double reach      = support_reach(integrator_parameters.basis,
+                                           0.5 / body.particles_per_cell);
+        const double nodes_flat = std::sqrt(2. * reach * h * R);
+        const double seed_flat  = std::sqrt(2. * spacing * R);
+        if (mu_at_nodes > 0 && nodes_flat > mu_at_nodes * R)
+          pcout << "  warning: body " << b << " is round (radius " << R
+                << ") and its friction (" << at_nodes
+                << ", mu = " << mu_at_nodes
+                << ") acts at the grid's nodes: every node its stencils "
+                   "reach holds it, a flat of about "
+                << nodes_flat
+                << " either side of its lowest point, wider than mu R = "
+                << mu_at_nodes * R
+                << ", and such a flat keeps it from turning (it slides like "
+                   "a block); friction turns it only on cells below about "
+                   "mu^2 R / (2 r) = "
+                << mu_at_nodes * mu_at_nodes * R / (2. * reach)
+                << " (r = " << reach
+                << ", the basis' reach in cells). A rigid wall ('Boundary "
+                   "conditions/Rigid wall') acts "
+                   "on the points and turns a body seeded from a mesh "
+                   "(benchmarks/contact/README.md)"
+                << std::endl;
+        else if (mu_at_points > 0 && seed_flat > mu_at_points * R)
+          pcout << "  warning: body " << b << " is round (radius " << R
+                << ") and seeded on the grid's lattice, whose bottom row is "
+                   "a flat of up to "
+                << seed_flat
+                << " either side of its lowest point, wider than mu R = "
+                << mu_at_points * R
+                << " of a rigid wall's friction: the flat resists its "
+                   "turning (a disk at mu = 0.1 turns at 11 / 40 / 80 % of "
+                   "its rate with 10 / 20 / 40 points per radius); 'shape = "
+                   "mesh' with 'mesh points = Gauss points' seeds it round "
+                   "(benchmarks/contact/README.md)"
+                << std::endl;
+      }
   }
 
 

@@ -34,6 +34,27 @@ namespace mpm
     {"cubic B-spline", BasisType::cubic_bspline}};
 
 
+  /// How far a point's weights reach, in cells: the half-width of the
+  /// basis' support (GIMP: the hat's plus the point's @p half_width).
+  inline double
+  support_reach(const BasisType basis, const double half_width)
+  {
+    switch (basis)
+      {
+        case BasisType::linear:
+          return 1;
+        case BasisType::uniform_gimp:
+        case BasisType::cpgimp:
+          return 1 + half_width;
+        case BasisType::quadratic_bspline:
+          return 1.5;
+        case BasisType::cubic_bspline:
+          return 2;
+      }
+    return 2;
+  }
+
+
   /**
    * One-dimensional kernels, in cell units. evaluate() receives the
    * point's coordinate xi in [0, 1) within its cell and (GIMP only) the

@@ -152,6 +152,9 @@ namespace mpm
     warn_of_pic_viscosity() const;
     void
     warn_of_apic_at_rough_faces() const;
+    /// Round bodies on a flat wider than mu R (see there).
+    void
+    warn_of_rolling_resistance() const;
     void
     print_performance(const double wall_seconds,
                       const double step_seconds) const;

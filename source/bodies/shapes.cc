@@ -117,6 +117,12 @@ namespace mpm
         return {"center", "radius"};
       }
 
+      double
+      rolling_radius() const override
+      {
+        return radii.outer;
+      }
+
     private:
       const Point<dim> center;
       const Radii      radii;
@@ -169,6 +175,12 @@ namespace mpm
       extent_parameters() const override
       {
         return {"center", "radius"};
+      }
+
+      double
+      rolling_radius() const override
+      {
+        return radii.outer;
       }
 
     private:

@@ -45,6 +45,14 @@ namespace mpm
     /// The parameters that set the shape's extent, for messages.
     virtual std::vector<std::string>
     extent_parameters() const = 0;
+
+    /// The radius of the round surface the body can roll on (ball,
+    /// cylinder); 0 for a shape whose edge has corners.
+    virtual double
+    rolling_radius() const
+    {
+      return 0;
+    }
   };
 } // namespace mpm
 
