@@ -13,6 +13,14 @@ Prandtl's 2 + pi, and the wall time.
   strip_footing.py --exe ... --footing rigid                the footing as a
                                     rigid body in the region's box, pushed at
                                     the same speed, rough contact (mu = 100)
+  strip_footing.py --exe ... --cells 5 --transfers scene,APIC,relaxation
+      --max-residual 0.02 --check
+      each transfer (the scene's FLIP 0.95, APIC, FLIP with a PIC
+      relaxation time of 1 s): the peaks agree within --max-difference,
+      and the energy residual at the end (the region's work against the
+      strain energy, plastic work and kinetic energy) is within
+      --max-residual of the work put in (issue 29's audit of velocity
+      regions under shear)
 """
 import argparse, math, os, sys
 
@@ -20,6 +28,11 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from scene_runner import cost, overrides, run_scene, sweep_arguments  # noqa: E402
 
 PRANDTL = 2 + math.pi
+TRANSFERS = {
+    "scene": [],
+    "APIC": ["-s", "Simulation/transfer=APIC"],
+    "relaxation": ["-s", "Simulation/FLIP fraction=1",
+                   "-s", "Simulation/PIC relaxation time=1"]}
 
 
 def rigid_footing(per_half_width):
@@ -48,7 +61,9 @@ def run(exe, per_half_width, end_time, footing="region", extra=()):
     c, half_width = 1e4, 0.5
     column = "region_force_y" if footing == "region" else "rigid1_force_y"
     q = [-float(row[column]) / half_width / c for row in rows]
-    return (max(q),) + cost(r)
+    residual = float(rows[-1]["energy_residual"]) \
+        if "energy_residual" in rows[-1] else None
+    return (max(q), residual) + cost(r)
 
 
 def main():
@@ -68,32 +83,53 @@ def main():
                         help="both: also check that the rigid body's peak "
                              "equals the region's within --max-difference")
     parser.add_argument("--max-difference", type=float, default=0.02)
+    parser.add_argument("--transfers", default="scene",
+                        help="comma-separated: scene (FLIP 0.95), APIC, "
+                             "relaxation (FLIP with a PIC relaxation time "
+                             "of 1 s); with several, --check also asks "
+                             "their peaks to agree within --max-difference")
+    parser.add_argument("--max-residual", type=float, default=None,
+                        help="turn the energy residual on, and check it at "
+                             "the end within this share of the work put in")
     a = parser.parse_args()
 
     footings = ("region", "rigid") if a.footing == "both" else (a.footing,)
-    print("footing,cells_per_half_width,h,peak_q_over_c,prandtl,"
-          "relative_error,wall_seconds,ns_per_particle_step")
+    transfers = a.transfers.split(",")
+    extra = overrides(a)
+    if a.max_residual is not None:
+        extra += ["-s", "Simulation/energy residual=true"]
+    print("footing,transfer,cells_per_half_width,h,peak_q_over_c,prandtl,"
+          "relative_error,energy_residual,wall_seconds,ns_per_particle_step")
     ok = True
     for n in [int(x) for x in a.cells.split(",")]:
         peaks = {}
         for footing in footings:
-            peak, wall, ns = run(a.exe, n, a.end_time, footing, overrides(a))
-            peaks[footing] = peak
-            error = peak / PRANDTL - 1
-            print("%s,%d,%g,%.5f,%.5f,%.5f,%.2f,%.1f" %
-                  (footing, n, 0.5 / n, peak, PRANDTL, error, wall, ns),
-                  flush=True)
-            # Coarse grids overestimate (the footing's nodal edge reaches
-            # half a cell beyond B/2); a value below Prandtl's would be
-            # suspicious too.
-            ok = ok and -0.01 <= error <= a.max_error
-        if len(peaks) == 2:
-            difference = peaks["rigid"] / peaks["region"] - 1
-            print("# rigid body against region: %+.4f" % difference)
+            for transfer in transfers:
+                peak, residual, wall, ns = run(
+                    a.exe, n, a.end_time, footing,
+                    TRANSFERS[transfer] + extra)
+                peaks[(footing, transfer)] = peak
+                error = peak / PRANDTL - 1
+                print("%s,%s,%d,%g,%.5f,%.5f,%.5f,%s,%.2f,%.1f" %
+                      (footing, transfer, n, 0.5 / n, peak, PRANDTL, error,
+                       "" if residual is None else "%.5f" % residual, wall,
+                       ns), flush=True)
+                # Coarse grids overestimate (the footing's nodal edge
+                # reaches half a cell beyond B/2); a value below Prandtl's
+                # would be suspicious too.
+                ok = ok and -0.01 <= error <= a.max_error
+                if a.max_residual is not None:
+                    ok = ok and abs(residual) <= a.max_residual
+        values = list(peaks.values())
+        if len(values) > 1:
+            difference = max(values) / min(values) - 1
+            print("# largest difference between the peaks: %+.4f"
+                  % difference)
             ok = ok and abs(difference) <= a.max_difference
     if a.check and not ok:
         print("FAILED: a peak bearing pressure lies outside [-1%%, %g] of "
-              "2 + pi, or the two footings differ by more than %g"
+              "2 + pi, the footings or transfers differ by more than %g, or "
+              "an energy residual exceeds --max-residual"
               % (a.max_error, a.max_difference))
         sys.exit(1)
 
