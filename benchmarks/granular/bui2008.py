@@ -21,6 +21,11 @@ x = 0.18 m.
   bui2008.py --exe ... --plot bui2008.png                profiles beside
       the measurements (needs matplotlib)
   bui2008.py --exe ... -s "Simulation/transfer=FLIP"     another scheme
+  bui2008.py --exe ... --floor wall:1                    another floor:
+      fixed (the scene's no-slip grid face), friction:MU (the grid's
+      Coulomb face) or wall:MU (a rigid wall with Coulomb friction MU, on
+      the points, through the bottom row's centres two cells above a slip
+      face; heights are measured from the column's bottom edge)
 """
 import argparse, os, sys
 
@@ -82,18 +87,50 @@ def failure_line(points, displacement, spacing):
     return [(edge[k], (k + 0.5) * spacing) for k in sorted(edge)]
 
 
-def run(exe, h, extra):
-    nx, ny = round(WIDTH / h), round(HEIGHT / h)
+def floor_overrides(floor, h, spacing):
+    """The overrides that make the floor @p floor, and the height of the
+    column's bottom above the grid's bottom."""
+    kind, _, mu = floor.partition(":")
+    if kind == "fixed":
+        return [], 0.
+    if kind == "friction":
+        return ["-s", "Grid/boundary y min=friction",
+                "-s", "Grid/friction coefficient=" + mu], 0.
+    if kind != "wall":
+        raise ValueError("--floor: fixed, friction:MU or wall:MU")
+    # The wall acts at the points' centres (the body's edge sinks half a
+    # spacing into it), so it goes through the bottom row's centres: the
+    # column does not settle onto it. Two cells of grid below keep the
+    # points that its penalty lets in inside the grid.
+    y0 = 2 * h
+    return ["-s", "Grid/upper corner=%g, %g" % (WIDTH, HEIGHT + y0),
+            "-s", "Grid/boundary y min=slip",
+            "-s", "Bodies/Body 0/lower corner=0, %g" % y0,
+            "-s", "Bodies/Body 0/upper corner=0.2, %g" % (H0 + y0),
+            "-s", "Simulation/constants=H=%g, rho=2650, g=9.81, K0=0.661"
+            % (H0 + y0),
+            "-s", "Boundary conditions/number of rigid walls=1",
+            "-s", "Boundary conditions/Rigid wall 0/point=0, %g"
+            % (y0 + spacing / 2),
+            "-s", "Boundary conditions/Rigid wall 0/normal=0, 1",
+            "-s", "Boundary conditions/Rigid wall 0/friction coefficient="
+            + mu], y0
+
+
+def run(exe, h, extra, floor="fixed"):
+    spacing = h / points_per_cell(extra)
+    at_floor, y0 = floor_overrides(floor, h, spacing)
+    nx, ny = round(WIDTH / h), round((HEIGHT + y0) / h)
     r = run_scene(exe, "granular/bui2008.prm",
-                  ["-s", "Grid/cells=%d, %d" % (nx, ny)] + extra,
+                  ["-s", "Grid/cells=%d, %d" % (nx, ny)] + at_floor + extra,
                   frame=-1, fields="displacement",
                   frame_fields=("displacement",))
-    spacing = h / points_per_cell(extra)
     last = r.rows[-1]
-    toe = max(x for x, _, _ in r.points) + spacing / 2
+    points = [(x, y - y0, z) for x, y, z in r.points]
+    toe = max(x for x, _, _ in points) + spacing / 2
     toe99 = float(last["body0_x_front_max"]) + spacing / 2
-    profile = surface(r.points, spacing, h)
-    line = failure_line(r.points, r.fields["displacement"], spacing)
+    profile = surface(points, spacing, h)
+    line = failure_line(points, r.fields["displacement"], spacing)
     bottom = [x for x, y in line if y < 5e-3]
     foot = max(bottom) if bottom else 0.
     released = float(r.rows[0]["gravitational_energy"]) - \
@@ -145,6 +182,8 @@ def main():
                         "%g-%g m, every "
                         "plateau in %g-%g m and every deposit is at rest" %
                         (CHECK_TOE + CHECK_PLATEAU))
+    parser.add_argument("--floor", default="fixed",
+                        help="fixed, friction:MU or wall:MU")
     parser.add_argument("--plot", help="PNG of the profiles")
     parser.add_argument("--label", default="MUSL, FLIP 0.999, quadratic B-spline",
                         help="the scheme, for the plot's title")
@@ -154,7 +193,7 @@ def main():
           "wall_seconds,ns_per_particle_step")
     runs, ok = [], True
     for h in [float(x) for x in a.h.split(",")]:
-        r = run(a.exe, h, extra)
+        r = run(a.exe, h, extra, a.floor)
         runs.append(r)
         print("%g,%.4f,%.4f,%.4f,%.4f,%.4f,%.2e,%.2f,%.1f" % (
             h, r["toe"], r["toe_rods"], r["toe99"], r["plateau"], r["foot"],
