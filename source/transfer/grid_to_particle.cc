@@ -21,6 +21,72 @@ namespace mpm
     , guard_mass(guard_mass)
     , context(parts.context)
   {
+    const auto &g = parts.grid.parameters();
+    for (unsigned int f = 0; f < 2 * dim; ++f)
+      if (g.boundary[f] == BoundaryType::fixed ||
+          g.boundary[f] == BoundaryType::friction)
+        {
+          const unsigned int axis = f / 2;
+          // The widest reach of the scene's basis (GIMP with one point per
+          // cell): a point further away touches none of the face's nodes.
+          rough_faces.push_back(
+            {axis,
+             f % 2 == 0 ? g.lower_corner[axis] : g.upper_corner[axis],
+             support_reach(prm.basis, 0.5) * parts.grid.cell_size()[axis]});
+        }
+  }
+
+
+  /**
+   * APIC's v_p is the grid's velocity at the point; what a point remembers
+   * of its own motion is its affine field C_p. A cohesionless point that
+   * has parted (opening > 0) has no stress, and alone near a fixed or
+   * friction face its field holds momentum the face never sees: within
+   * h/2 of the face the basis is linear (weights 1 - xi, xi), the field
+   * vanishes at the face's nodes (C_yy = v_py / y_p) and puts all of the
+   * point's momentum into the face, and of its slide along it, on the light
+   * node row above, which gravity then speeds up step after step. The
+   * face's nodes see neither, so a point on a face inclined below its
+   * friction angle slid on and was torn apart (J > 1000; session 27's
+   * trace, benchmarks/granular/README.md). Without the part of C_p along
+   * the normal, the point gives the face nodes its own velocity, as FLIP
+   * does, and the face holds it.
+   *
+   * Only a point alone: in the thin sheet at a collapse's front many
+   * parted points flow along the floor, and their shear across it lives
+   * in C_p alone; taking it from every parted point near the face damped
+   * that sheet like PIC (the Bui toe fell from 0.460 to 0.335 m). A point
+   * is alone where its own mass is most of what its nodes hold:
+   * sum_I phi_I^2 m_p / m_I > 1/2 (1 for a point without neighbours; a
+   * row of points along the floor is near 0.3).
+   */
+  template <int dim>
+  template <typename Stencil>
+  void
+  GridToParticle<dim>::release_lone_point_at_rough_face(
+    const Point<dim>  &x,
+    const Stencil     &s,
+    const double      *u,
+    const unsigned int stride,
+    double            *q) const
+  {
+    const FieldLayout &l = points.layout();
+    if (l.opening == FieldLayout::absent || !(q[l.opening] > 0))
+      return;
+    for (const RoughFace &f : rough_faces)
+      if (std::abs(x[f.axis] - f.coordinate) < f.reach)
+        {
+          double share = 0;
+          for (unsigned int v = 0; v < s.weights.size(); ++v)
+            {
+              const double m_I = u[stride * s.nodes[v] + Layout::node_mass];
+              if (m_I > 0)
+                share += s.weights[v] * s.weights[v] * q[l.mass] / m_I;
+            }
+          if (share > 0.5)
+            for (unsigned int i = 0; i < dim; ++i)
+              q[l.affine_velocity + i * dim + f.axis] = 0;
+        }
   }
 
 
@@ -71,6 +137,8 @@ namespace mpm
           }
         Transfer::template update_point<dim, Basis>(
           basis, s, u, stride, q, l, v_grid, dv_grid, state, affine);
+        if constexpr (Transfer::stores_affine_velocity)
+          release_lone_point_at_rough_face(p->get_location(), s, u, stride, q);
         p->set_location(p->get_location() + dt * v_grid);
         if (kinematics)
           apply_velocity_gradient(

@@ -55,6 +55,29 @@ namespace mpm
                             const Tensor<2, dim> &L,
                             const double          dt);
 
+    /**
+     * A parted point alone near a fixed or friction face forgets the part
+     * of its affine field that varies along the face's normal (see the
+     * definition for why): C_p e_n = 0.
+     */
+    template <typename Stencil>
+    void
+    release_lone_point_at_rough_face(const Point<dim>  &x,
+                                     const Stencil     &s,
+                                     const double      *u,
+                                     const unsigned int stride,
+                                     double            *q) const;
+
+    /// A fixed or friction face: its normal's axis, where it lies, and how
+    /// far from it a point's stencil reaches its nodes.
+    struct RoughFace
+    {
+      unsigned int axis;
+      double       coordinate;
+      double       reach;
+    };
+    std::vector<RoughFace> rough_faces;
+
     const IntegratorParameters<dim> &prm;
     MaterialPoints<dim>             &points;
     const PointLoop<dim>            &loop;
