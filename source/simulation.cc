@@ -1003,8 +1003,7 @@ namespace mpm
       return;
     std::string rough_face;
     for (unsigned int f = 0; f < 2 * dim && rough_face.empty(); ++f)
-      if (grid_parameters.boundary[f] == BoundaryType::fixed ||
-          grid_parameters.boundary[f] == BoundaryType::friction)
+      if (is_rough(grid_parameters.boundary[f]))
         rough_face =
           face_name(f) + "' = " +
           (grid_parameters.boundary[f] == BoundaryType::fixed ? "fixed"

@@ -23,8 +23,7 @@ namespace mpm
   {
     const auto &g = parts.grid.parameters();
     for (unsigned int f = 0; f < 2 * dim; ++f)
-      if (g.boundary[f] == BoundaryType::fixed ||
-          g.boundary[f] == BoundaryType::friction)
+      if (is_rough(g.boundary[f]))
         {
           const unsigned int axis = f / 2;
           // The widest reach of the scene's basis (GIMP with one point per
@@ -71,8 +70,6 @@ namespace mpm
     double            *q) const
   {
     const FieldLayout &l = points.layout();
-    if (l.opening == FieldLayout::absent || !(q[l.opening] > 0))
-      return;
     for (const RoughFace &f : rough_faces)
       if (std::abs(x[f.axis] - f.coordinate) < f.reach)
         {
@@ -111,6 +108,10 @@ namespace mpm
     std::array<Tensor<1, dim>, Basis::n_nodes> affine;
     const unsigned int                         fields_per_node = nodes.n_fields;
     const unsigned int *fields_of_body = nodes.field_of_body.data();
+    // Only parted points alone near a rough face give up part of their
+    // affine field (release_lone_point_at_rough_face): decided once here.
+    const bool lone_point_rule =
+      !rough_faces.empty() && l.opening != FieldLayout::absent;
     // Compiled once for each transfer and for one or several fields, so
     // that the PIC/FLIP loop carries nothing of APIC's, nor a scene
     // without contact anything of it.
@@ -138,7 +139,9 @@ namespace mpm
         Transfer::template update_point<dim, Basis>(
           basis, s, u, stride, q, l, v_grid, dv_grid, state, affine);
         if constexpr (Transfer::stores_affine_velocity)
-          release_lone_point_at_rough_face(p->get_location(), s, u, stride, q);
+          if (lone_point_rule && q[l.opening] > 0)
+            release_lone_point_at_rough_face(
+              p->get_location(), s, u, stride, q);
         p->set_location(p->get_location() + dt * v_grid);
         if (kinematics)
           apply_velocity_gradient(

@@ -36,6 +36,15 @@ namespace mpm
     return kind == BoundaryType::fixed || kind == BoundaryType::slip ||
            kind == BoundaryType::friction;
   }
+
+  /// Does a face of kind @p kind hold the tangential velocity of its nodes
+  /// (no-slip or Coulomb), where APIC's affine field can hide a point's
+  /// motion from it (GridToParticle, Simulation's warning)?
+  inline bool
+  is_rough(const BoundaryType kind)
+  {
+    return kind == BoundaryType::fixed || kind == BoundaryType::friction;
+  }
 } // namespace mpm
 
 #endif

@@ -56,9 +56,9 @@ namespace mpm
                             const double          dt);
 
     /**
-     * A parted point alone near a fixed or friction face forgets the part
-     * of its affine field that varies along the face's normal (see the
-     * definition for why): C_p e_n = 0.
+     * A parted point (the caller checks its opening) alone near a fixed or
+     * friction face forgets the part of its affine field that varies along
+     * the face's normal (see the definition for why): C_p e_n = 0.
      */
     template <typename Stencil>
     void
