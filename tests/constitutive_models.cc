@@ -497,6 +497,71 @@ namespace
 
   // -------------------------------------------------------------------------
   /**
+   * Steady simple shear (plane strain) of a cohesionless Mohr-Coulomb
+   * point with inertial rate strengthening, from an isotropic pressure
+   * p0, at the shear rate of a given inertial number. Once the flow is
+   * steady all of the shear rate is plastic, and the friction the point
+   * mobilises must be mu(I) = tan phi_s + (tan phi_d - tan phi_s) I / (I +
+   * I_0), I = gamma_dot_p d / sqrt(p / rho_s), on the Mohr-Coulomb
+   * surface: the in-plane Mohr circle's radius over its centre is
+   * sin(atan mu(I)) (the out-of-plane stress stays intermediate). Without
+   * the rate strengthening the circle would give sin phi_s at every rate.
+   */
+  void
+  mohr_coulomb_inertial_shear()
+  {
+    const double p0 = 1e4, d = 1e-3, I_0 = 0.3, rho = Point<2>::density;
+    const double mu_s = std::tan(20 * M_PI / 180);
+    const double mu_d = std::tan(35 * M_PI / 180);
+    SymmetricTensor<2, 3> sigma0;
+    for (unsigned int i = 0; i < 3; ++i)
+      sigma0[i][i] = -p0;
+    for (const double I_target : {1e-6, 0.03, 0.3, 3.})
+      {
+        Point<2>     p("Mohr-Coulomb",
+                   {{"Young's modulus", "1e7"},
+                        {"Poisson's ratio", "0.3"},
+                        {"cohesion", "0"},
+                        {"friction angle", "20"},
+                        {"dilation angle", "0"},
+                        {"rate strengthening", "inertial"},
+                        {"dynamic friction angle", "35"},
+                        {"grain diameter", "1e-3"},
+                        {"reference inertial number", "0.3"}},
+                   sigma0);
+        const double gamma_dot = I_target * std::sqrt(p0 / rho) / d;
+        const double dt        = 1e-4 / gamma_dot;
+        Tensor<2, 2> L;
+        L[0][1]            = gamma_dot;
+        double eqps_before = 0;
+        for (unsigned int i = 0; i < 600; ++i)
+          {
+            eqps_before = p.plastic_strain();
+            p.step(L, dt);
+          }
+        const double plastic_rate =
+          std::sqrt(3.) * (p.plastic_strain() - eqps_before) / dt;
+        const auto   tau    = p.tau();
+        const double centre = -(tau[0][0] + tau[1][1]) / 2;
+        const double radius =
+          std::hypot((tau[0][0] - tau[1][1]) / 2, tau[0][1]);
+        const double      pressure = -trace(tau) / 3;
+        const double      I  = plastic_rate * d / std::sqrt(pressure / rho);
+        const double      mu = mu_s + (mu_d - mu_s) * I / (I + I_0);
+        const std::string at =
+          "inertial shear at I = " + std::to_string(I_target);
+        check(at + ": plastic shear rate / gamma_dot - 1",
+              plastic_rate / gamma_dot - 1,
+              1e-5);
+        check(at + ": mobilised sin phi / sin(atan mu(I)) - 1",
+              radius / centre / std::sin(std::atan(mu)) - 1,
+              1e-6);
+      }
+  }
+
+
+  // -------------------------------------------------------------------------
+  /**
    * A cohesionless point pulled apart parts at zero stress and closes
    * again without stress: stretched by J = 1.2^dim it keeps zero stress
    * and an opening ln J; squeezed back half way and then all the way it
@@ -668,6 +733,9 @@ main()
   mohr_coulomb_regions();
 
   drucker_prager_apex();
+
+  std::cout << "Mohr-Coulomb with inertial rate strengthening" << std::endl;
+  mohr_coulomb_inertial_shear();
 
   std::cout << "Cohesionless points part and close" << std::endl;
   for (const std::string model : {"Mohr-Coulomb", "Drucker-Prager"})

@@ -206,6 +206,20 @@ main()
        {"1e-300", "1e300"});
   ends("Mohr-Coulomb", softening, "shear band thickness", {"1e-300", "1e300"});
 
+  Settings inertial = elastic;
+  inertial.emplace_back("cohesion", "0");
+  inertial.emplace_back("friction angle", "20");
+  inertial.emplace_back("rate strengthening", "inertial");
+  inertial.emplace_back("dynamic friction angle", "35");
+  inertial.emplace_back("grain diameter", "1e-3");
+  ends("Mohr-Coulomb", inertial, "dynamic friction angle", {"20", "89.99"});
+  ends("Mohr-Coulomb", inertial, "grain diameter", {"1e-300", "1e300"});
+  ends("Mohr-Coulomb",
+       inertial,
+       "reference inertial number",
+       {"1e-300", "1e300"});
+  ends("Mohr-Coulomb", inertial, "grain density", {"1e-300", "1e300"});
+
   const std::string maxwell = "Maxwell viscoelastic";
   ends(maxwell, elastic, "viscosity", {"1e-300", "1e300"});
   Settings glen = elastic;

@@ -354,6 +354,20 @@ mpm_test(footing_mohr_coulomb PRM ../benchmarks/plasticity/strip_footing.prm ${f
 mpm_test(bad_shear_band_thickness PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
   ${footing_mc} -s "Bodies/Body 0/Mohr-Coulomb/shear band thickness=0"
   ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/shear band thickness' = '0': must be 'local' or a thickness in m, > 0")
+#    Inertial rate strengthening (mu(I)) names what it lacks, and does not
+#    combine with softening.
+mpm_test(bad_rate_strengthening_with_softening PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ${footing_mc} -s "Bodies/Body 0/Mohr-Coulomb/rate strengthening=inertial"
+  ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/rate strengthening' = 'inertial': cannot be combined with softening = linear")
+mpm_test(bad_rate_strengthening_without_diameter PRM ../benchmarks/granular/bui2008.prm EXIT 1
+  ARGS -s "Bodies/Body 0/Mohr-Coulomb/rate strengthening=inertial"
+  -s "Bodies/Body 0/Mohr-Coulomb/dynamic friction angle=30"
+  ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/grain diameter' = '': is needed with rate strengthening = inertial: a diameter in m, > 0")
+mpm_test(bad_dynamic_friction_angle PRM ../benchmarks/granular/bui2008.prm EXIT 1
+  ARGS -s "Bodies/Body 0/Mohr-Coulomb/rate strengthening=inertial"
+  -s "Bodies/Body 0/Mohr-Coulomb/dynamic friction angle=15"
+  -s "Bodies/Body 0/Mohr-Coulomb/grain diameter=1e-3"
+  ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/dynamic friction angle' = '15': allowed range is .19.8, 90.")
 mpm_test(footing_mohr_coulomb_mpi2 PRM ../benchmarks/plasticity/strip_footing.prm NP 2
   REFERENCE footing_mohr_coulomb.output RELTOL 1e-7 ${footing_mc})
 #    Bad values of the new parameters name the parameter.

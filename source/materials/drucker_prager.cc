@@ -95,7 +95,7 @@ namespace mpm
       }
 
       bool
-      return_map(std::array<double, 3> &tau, const double) const
+      return_map(std::array<double, 3> &tau, const double, const double) const
       {
         const auto [p_trial, r_trial] = invariants(tau);
         const double f                = r_trial + eta * p_trial - xi_c;

@@ -83,7 +83,7 @@ namespace mpm
       }
 
       bool
-      return_map(std::array<double, 3> &, const double) const
+      return_map(std::array<double, 3> &, const double, const double) const
       {
         return false;
       }

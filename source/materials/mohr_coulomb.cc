@@ -92,6 +92,23 @@ namespace mpm
      * strength at eqps_n (consistent_softening_return), and by the
      * Illinois (regula falsi) method on [0, g(residual)], which brackets
      * the root because g grows as the material softens, where that fails.
+     *
+     * Rate strengthening (the mu(I) rheology of dense granular flow, Jop,
+     * Forterre and Pouliquen 2006): the friction rises with the inertial
+     * number of the plastic flow, I = gamma_dot d / sqrt(p / rho_s), as
+     *   tan phi = mu(I) = tan phi_s + (tan phi_d - tan phi_s) I / (I + I_0),
+     * phi_s the friction angle, phi_d its limit for fast flow. gamma_dot is
+     * the plastic shear rate of the step, sqrt(3) x / dt for a plastic
+     * strain increment x (x is the von Mises equivalent, gamma / sqrt 3 in
+     * simple shear), and p the trial's Kirchhoff pressure (the Cauchy one
+     * within the elastic volume change; exact at psi = 0, where the return
+     * keeps the pressure). The return is consistent at the end of the step,
+     * as for softening: x solves x = g(x), g(x) the increment of the return
+     * with the friction of rate x / dt. The friction grows with x, so g
+     * falls and [0, g(0)] brackets the root. A rate-dependent strength is a
+     * viscosity: the elastic-plastic step stays well posed (Dunatunga and
+     * Kamrin 2015 solve the same return), and no extra time step limit
+     * follows, because the return is implicit.
      */
     struct MohrCoulombFlow
     {
@@ -153,6 +170,39 @@ namespace mpm
           "by this thickness over the cell size, so that the slip across "
           "the band at which the soil is residual, strain x thickness, is "
           "the same on every grid (regularisation by the band's width).");
+        prm.declare_entry(
+          "rate strengthening",
+          "none",
+          Patterns::Selection("none|inertial"),
+          "none, or inertial: the friction rises with the inertial number of "
+          "the plastic flow, I = gamma_dot d / sqrt(p / rho_s) (gamma_dot "
+          "the plastic shear rate, p the pressure, d and rho_s the grains' "
+          "diameter and density), as tan phi = tan phi_s + (tan phi_d - tan "
+          "phi_s) I / (I + I_0), phi_s the friction angle (the mu(I) "
+          "rheology of dense granular flow, Jop, Forterre and Pouliquen "
+          "2006). Not with softening.");
+        prm.declare_entry("dynamic friction angle",
+                          "",
+                          Patterns::Anything(),
+                          "Inertial rate strengthening: phi_d in degrees, the "
+                          "friction angle of fast flow (I >> I_0), in "
+                          "[friction angle, 90).");
+        prm.declare_entry("reference inertial number",
+                          "0.279",
+                          Patterns::Anything(),
+                          "Inertial rate strengthening: I_0 > 0, the inertial "
+                          "number at which the friction is half-way from "
+                          "phi_s to phi_d (0.279 for glass beads, Jop et al. "
+                          "2006).");
+        prm.declare_entry("grain diameter",
+                          "",
+                          Patterns::Anything(),
+                          "Inertial rate strengthening: d in m, > 0.");
+        prm.declare_entry("grain density",
+                          "body",
+                          Patterns::Anything(),
+                          "Inertial rate strengthening: rho_s in kg/m^3, > 0, "
+                          "or 'body' for the body's density.");
       }
 
       using Strength = FrictionalStrength;
@@ -190,7 +240,8 @@ namespace mpm
               prm, path, "residual plastic strain", 0, 1e300, true);
             residual_strain *= band_scale(prm, path, context.cell_size);
           }
-        peak_angles               = angles_of(peak);
+        inertial    = parse_rate_strengthening(prm, path, context.density);
+        peak_angles = angles_of(peak);
         const Strength end        = strength(residual_strain);
         const Angles   end_angles = angles_of(end);
         peak_surface              = surface(peak, peak_angles);
@@ -235,6 +286,67 @@ namespace mpm
                            "needs a grid (the strain is scaled by the cell "
                            "size); 'local' here");
         return thickness / cell_size;
+      }
+
+      /// Inertial rate strengthening's constants; off unless 'inertial'.
+      struct InertialFriction
+      {
+        bool   on = false;
+        double mu_s, mu_d, I_0, d, rho_s;
+      };
+
+      InertialFriction
+      parse_rate_strengthening(const ParameterHandler &prm,
+                               const std::string      &path,
+                               const double            body_density) const
+      {
+        InertialFriction inertial;
+        if (prm.get("rate strengthening") != "inertial")
+          return inertial;
+        if (softening)
+          throw InputError(path + "/rate strengthening",
+                           "inertial",
+                           "cannot be combined with softening = linear: "
+                           "choose one");
+        // An empty entry is a missing one: say what it needs.
+        const auto require = [&](const std::string &name,
+                                 const std::string &range) {
+          if (prm.get(name).empty())
+            throw InputError(path + "/" + name,
+                             "",
+                             "is needed with rate strengthening = inertial: " +
+                               range);
+        };
+        require("dynamic friction angle", "degrees in [friction angle, 90)");
+        require("grain diameter", "a diameter in m, > 0");
+        const double phi_s = friction_angle_degrees(prm, path);
+        inertial.mu_s      = std::tan(peak.phi);
+        inertial.mu_d      = std::tan(radians(Parse::bounded_double(
+          prm, path, "dynamic friction angle", phi_s, 90, false, true)));
+        inertial.d =
+          Parse::bounded_double(prm, path, "grain diameter", 0, 1e300, true);
+        inertial.I_0 = Parse::bounded_double(
+          prm, path, "reference inertial number", 0, 1e300, true);
+        inertial.rho_s =
+          prm.get("grain density") == "body"
+            ? body_density
+            : Parse::bounded_double(prm, path, "grain density", 0, 1e300, true);
+        inertial.on = true;
+        return inertial;
+      }
+
+      /// The friction coefficient tan phi = mu(I) of a plastic strain
+      /// increment @p x in a step @p dt at pressure @p p > 0 (rate
+      /// strengthening).
+      double
+      rate_friction(const double x, const double dt, const double p) const
+      {
+        // Written with I_0 / I, so that I = 0 and I = infinity (extreme
+        // grains) give mu_s and mu_d, not 0 / 0.
+        const double I =
+          std::sqrt(3.) * x / dt * inertial.d / std::sqrt(p / inertial.rho_s);
+        return inertial.mu_s +
+               (inertial.mu_d - inertial.mu_s) / (1. + inertial.I_0 / I);
       }
 
       Strength
@@ -544,7 +656,9 @@ namespace mpm
       }
 
       bool
-      return_map(std::array<double, 3> &tau, const double eqps) const
+      return_map(std::array<double, 3> &tau,
+                 const double           eqps,
+                 const double           dt) const
       {
         std::array<unsigned int, 3> order = {{0, 1, 2}};
         std::sort(order.begin(),
@@ -559,7 +673,12 @@ namespace mpm
         unsigned int          set = 0;
         // Without softening left, one return; with it, the consistent
         // return starts from the one with the strength at the step's start.
-        if (!softening || eqps >= residual_strain)
+        if (inertial.on)
+          {
+            if (!rate_strengthened_return(trial, dt, s))
+              return false;
+          }
+        else if (!softening || eqps >= residual_strain)
           {
             if (!return_sorted(s, surface_at(eqps, buffer)))
               return false;
@@ -726,38 +845,26 @@ namespace mpm
         return bracketed_softening_return(trial, eqps);
       }
 
-      /// The consistent return by the Illinois (regula falsi) method on
-      /// [0, g(residual)], which brackets the root because g grows as the
-      /// material softens: whatever the active set does.
-      std::array<double, 3>
-      bracketed_softening_return(const std::array<double, 3> &trial,
-                                 const double                 eqps) const
+      /// The root of @p h on [a, b], h(a) = fa > 0 > fb = h(b), by the
+      /// Illinois (regula falsi) method, to |h| <= @p relative (x + @p
+      /// absolute).
+      template <typename Function>
+      static double
+      illinois_root(const Function &h,
+                    double          a,
+                    double          fa,
+                    double          b,
+                    double          fb,
+                    const double    relative,
+                    const double    absolute)
       {
-        auto returned = [&](const double x) {
-          std::array<double, 3> s = trial;
-          Surface               buffer;
-          return_sorted(s, surface_at(eqps + x, buffer));
-          return s;
-        };
-        auto h = [&](const double x) {
-          return elasticity.equivalent_plastic_strain(trial, returned(x)) - x;
-        };
-        double a = 0, fa = h(0);
-        double b = std::max(residual_strain - eqps, 0.) +
-                   elasticity.equivalent_plastic_strain(
-                     trial, returned(residual_strain - eqps));
-        double fb = h(b);
-        if (fa <= 0)
-          return returned(0);
-        if (fb >= 0)
-          return returned(b);
         int    side = 0;
         double x    = a;
         for (unsigned int it = 0; it < 100; ++it)
           {
             x              = (a * fb - b * fa) / (fb - fa);
             const double f = h(x);
-            if (std::abs(f) <= 1e-14 * (1e-6 + x) || b - a < 1e-15)
+            if (std::abs(f) <= relative * (absolute + x) || b - a < 1e-15)
               break;
             if (f * fb > 0)
               {
@@ -774,7 +881,103 @@ namespace mpm
                 side = 1;
               }
           }
-        return returned(x);
+        return x;
+      }
+
+      /// The consistent return by the Illinois (regula falsi) method on
+      /// [0, g(residual)], which brackets the root because g grows as the
+      /// material softens: whatever the active set does.
+      std::array<double, 3>
+      bracketed_softening_return(const std::array<double, 3> &trial,
+                                 const double                 eqps) const
+      {
+        auto returned = [&](const double x) {
+          std::array<double, 3> s = trial;
+          Surface               buffer;
+          return_sorted(s, surface_at(eqps + x, buffer));
+          return s;
+        };
+        auto h = [&](const double x) {
+          return elasticity.equivalent_plastic_strain(trial, returned(x)) - x;
+        };
+        const double fa = h(0);
+        const double b  = std::max(residual_strain - eqps, 0.) +
+                         elasticity.equivalent_plastic_strain(
+                           trial, returned(residual_strain - eqps));
+        const double fb = h(b);
+        if (fa <= 0)
+          return returned(0);
+        if (fb >= 0)
+          return returned(b);
+        return returned(illinois_root(h, 0, fa, b, fb, 1e-14, 1e-6));
+      }
+
+      /**
+       * The return of sorted trial stresses @p trial with inertial rate
+       * strengthening in a step @p dt, into @p s; false if the trial is
+       * admissible at the static friction. The plastic strain increment x
+       * solves h(x) = g(x) - x = 0 on [0, g(0)] (see the class
+       * documentation), by the Illinois method: first with the main plane
+       * alone as the active set, where each g(x) is a closed form; if that
+       * stress is not sorted or crosses the cutoff, with the full return.
+       */
+      bool
+      rate_strengthened_return(const std::array<double, 3> &trial,
+                               const double                 dt,
+                               std::array<double, 3>       &s) const
+      {
+        s = trial;
+        if (!return_sorted(s, peak_surface))
+          return false;
+        // No pressure (the apex, parted points) or no step: no rate.
+        const double p = -(trial[0] + trial[1] + trial[2]) / 3.;
+        if (!(p > 0) || !(dt > 0))
+          return true;
+        // The main plane of friction mu(I(x)): its flow (psi), cohesion
+        // and Dn are the peak's; sin and cos of phi = atan mu are
+        // algebraic, so an evaluation of h costs no trigonometry.
+        const auto plane_at = [&](const double x) {
+          const double mu      = rate_friction(x, dt, p);
+          const double cos_phi = 1. / std::sqrt(1. + mu * mu);
+          MainPlane    plane   = peak_main_plane;
+          plane.a              = {{1 + mu * cos_phi, 0, -(1 - mu * cos_phi)}};
+          plane.k              = 2 * peak.c * cos_phi;
+          plane.tension = tension_limit(peak, {mu * cos_phi, cos_phi, 0., 1.});
+          return plane;
+        };
+        const auto on_main_plane = [&](const double x) {
+          const MainPlane plane = plane_at(x);
+          return dot(plane.a, trial) > plane.k ? returned_to(trial, plane)
+                                               : trial;
+        };
+        const auto on_surface = [&](const double x) {
+          Strength m              = peak;
+          m.phi                   = std::atan(rate_friction(x, dt, p));
+          std::array<double, 3> t = trial;
+          return_sorted(t, surface(m));
+          return t;
+        };
+        // The root of h for the return @p returned; g falls with x, so
+        // g(0) bounds it.
+        const auto increment = [&](const auto &returned) {
+          const auto h = [&](const double x) {
+            return elasticity.equivalent_plastic_strain(trial, returned(x)) - x;
+          };
+          const double g0 = h(0);
+          if (!(g0 > 0))
+            return 0.;
+          const double fb = h(g0);
+          return fb >= 0 ? g0 : illinois_root(h, 0, g0, g0, fb, 1e-10, 0);
+        };
+        const double x       = increment(on_main_plane);
+        const auto   t       = on_main_plane(x);
+        const double tension = plane_at(x).tension;
+        if (x > 0 && std::max({t[1] - t[0], t[2] - t[1], t[0] - tension}) <=
+                       tolerance_of(t, peak.c))
+          s = t;
+        else
+          s = on_surface(increment(on_surface));
+        return true;
       }
 
       /// The apex (or the cutoffs' corner) is at zero stress, at the peak
@@ -796,6 +999,7 @@ namespace mpm
       double                    cutoff;
       bool                      softening;
       double                    residual_strain = 1;
+      InertialFriction          inertial;
     };
   } // namespace LogStrain
 

@@ -59,7 +59,9 @@ namespace mpm
       }
 
       bool
-      return_map(std::array<double, 3> &tau, const double eqps) const
+      return_map(std::array<double, 3> &tau,
+                 const double           eqps,
+                 const double) const
       {
         const auto [p, q] = invariants(tau);
         const double f    = q - (yield_stress + hardening * eqps);

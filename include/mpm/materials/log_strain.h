@@ -305,9 +305,10 @@ namespace mpm
      *     // (or with a fourth argument, const MaterialContext &, for a
      *     // flow that needs the body's context)
      *     // Plastic: return tau (in place) to the admissible set of a
-     *     // point with equivalent plastic strain eqps; false if it was
-     *     // inside.
-     *     bool return_map(std::array<double,3> &tau, double eqps) const;
+     *     // point with equivalent plastic strain eqps in a step dt (a
+     *     // rate-dependent strength needs it); false if it was inside.
+     *     bool return_map(std::array<double,3> &tau, double eqps,
+     *                     double dt) const;
      *     // <= 0 inside the admissible set (initial-stress check).
      *     double yield_function(const std::array<double,3> &tau,
      *                           double eqps) const;
@@ -491,7 +492,7 @@ namespace mpm
           {
             const std::array<double, 3> tau_trial = tau;
             double                     &eqps      = p[layout.plastic_strain];
-            if (flow.return_map(tau, eqps))
+            if (flow.return_map(tau, eqps, dt))
               {
                 corrected = true;
                 eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
