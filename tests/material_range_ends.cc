@@ -152,6 +152,17 @@ namespace
                    failure.empty());
       }
   }
+
+  /// ends() of each parameter in @p ranges, with its values.
+  void
+  ends_of_each(
+    const std::string                                                   &model,
+    const Settings                                                      &base,
+    const std::vector<std::pair<std::string, std::vector<std::string>>> &ranges)
+  {
+    for (const auto &[parameter, values] : ranges)
+      ends(model, base, parameter, values);
+  }
 } // namespace
 
 
@@ -197,14 +208,13 @@ main()
   softening.emplace_back("softening", "linear");
   softening.emplace_back("friction angle", "40");
   softening.emplace_back("residual friction angle", "20");
-  ends("Mohr-Coulomb", softening, "residual cohesion", {"0", "1e4"});
-  ends("Mohr-Coulomb", softening, "residual friction angle", {"0", "40"});
-  ends("Mohr-Coulomb", softening, "residual dilation angle", {"0", "20"});
-  ends("Mohr-Coulomb",
-       softening,
-       "residual plastic strain",
-       {"1e-300", "1e300"});
-  ends("Mohr-Coulomb", softening, "shear band thickness", {"1e-300", "1e300"});
+  ends_of_each("Mohr-Coulomb",
+               softening,
+               {{"residual cohesion", {"0", "1e4"}},
+                {"residual friction angle", {"0", "40"}},
+                {"residual dilation angle", {"0", "20"}},
+                {"residual plastic strain", {"1e-300", "1e300"}},
+                {"shear band thickness", {"1e-300", "1e300"}}});
 
   Settings inertial = elastic;
   inertial.emplace_back("cohesion", "0");
@@ -212,13 +222,12 @@ main()
   inertial.emplace_back("rate strengthening", "inertial");
   inertial.emplace_back("dynamic friction angle", "35");
   inertial.emplace_back("grain diameter", "1e-3");
-  ends("Mohr-Coulomb", inertial, "dynamic friction angle", {"20", "89.99"});
-  ends("Mohr-Coulomb", inertial, "grain diameter", {"1e-300", "1e300"});
-  ends("Mohr-Coulomb",
-       inertial,
-       "reference inertial number",
-       {"1e-300", "1e300"});
-  ends("Mohr-Coulomb", inertial, "grain density", {"1e-300", "1e300"});
+  ends_of_each("Mohr-Coulomb",
+               inertial,
+               {{"dynamic friction angle", {"20", "89.99"}},
+                {"grain diameter", {"1e-300", "1e300"}},
+                {"reference inertial number", {"1e-300", "1e300"}},
+                {"grain density", {"1e-300", "1e300"}}});
 
   const std::string maxwell = "Maxwell viscoelastic";
   ends(maxwell, elastic, "viscosity", {"1e-300", "1e300"});
