@@ -105,10 +105,13 @@ namespace mpm
      * keeps the pressure). The return is consistent at the end of the step,
      * as for softening: x solves x = g(x), g(x) the increment of the return
      * with the friction of rate x / dt. The friction grows with x, so g
-     * falls and [0, g(0)] brackets the root. A rate-dependent strength is a
-     * viscosity: the elastic-plastic step stays well posed (Dunatunga and
-     * Kamrin 2015 solve the same return), and no extra time step limit
-     * follows, because the return is implicit.
+     * falls and [0, g(0)] brackets the root. Because the return is
+     * implicit in the rate, the rate term adds no time step limit (a
+     * viscosity of up to (tan phi_d - tan phi_s) p / gamma_dot would, if
+     * taken explicitly). Dunatunga and Kamrin (2015) return mu(I) in an
+     * elastic-plastic MPM in the same way. The incompressible mu(I)
+     * equations are ill-posed at very low and very high I (Barker et al.
+     * 2015); what elasticity and the grid do to that here is not analysed.
      */
     struct MohrCoulombFlow
     {
