@@ -338,16 +338,21 @@ namespace mpm
         return inertial;
       }
 
-      /// The friction coefficient tan phi = mu(I) of a plastic strain
-      /// increment @p x in a step @p dt at pressure @p p > 0 (rate
-      /// strengthening).
+      /// The inertial number per unit plastic strain increment in a step
+      /// @p dt at pressure @p p > 0: I = gamma_dot d / sqrt(p / rho_s),
+      /// gamma_dot = sqrt(3) x / dt. One number per point and step.
       double
-      rate_friction(const double x, const double dt, const double p) const
+      inertial_number_per_increment(const double dt, const double p) const
+      {
+        return std::sqrt(3.) / dt * inertial.d / std::sqrt(p / inertial.rho_s);
+      }
+
+      /// The friction coefficient tan phi = mu(I) (rate strengthening).
+      double
+      rate_friction(const double I) const
       {
         // Written with I_0 / I, so that I = 0 and I = infinity (extreme
         // grains) give mu_s and mu_d, not 0 / 0.
-        const double I =
-          std::sqrt(3.) * x / dt * inertial.d / std::sqrt(p / inertial.rho_s);
         return inertial.mu_s +
                (inertial.mu_d - inertial.mu_s) / (1. + inertial.I_0 / I);
       }
@@ -929,18 +934,24 @@ namespace mpm
                                const double                 dt,
                                std::array<double, 3>       &s) const
       {
-        s = trial;
-        if (!return_sorted(s, peak_surface))
+        // The test of return_sorted, on the plane that decides it (as in
+        // return_map's softening branch): no full return for the decision.
+        if (peak_main_plane.max_yield(trial) <= tolerance_of(trial, peak.c))
           return false;
         // No pressure (the apex, parted points) or no step: no rate.
         const double p = -(trial[0] + trial[1] + trial[2]) / 3.;
         if (!(p > 0) || !(dt > 0))
-          return true;
+          {
+            s = trial;
+            return_sorted(s, peak_surface);
+            return true;
+          }
+        const double I_per_x = inertial_number_per_increment(dt, p);
         // The main plane of friction mu(I(x)): its flow (psi), cohesion
         // and Dn are the peak's; sin and cos of phi = atan mu are
         // algebraic, so an evaluation of h costs no trigonometry.
         const auto plane_at = [&](const double x) {
-          const double mu      = rate_friction(x, dt, p);
+          const double mu      = rate_friction(I_per_x * x);
           const double cos_phi = 1. / std::sqrt(1. + mu * mu);
           MainPlane    plane   = peak_main_plane;
           plane.a              = {{1 + mu * cos_phi, 0, -(1 - mu * cos_phi)}};
@@ -955,7 +966,7 @@ namespace mpm
         };
         const auto on_surface = [&](const double x) {
           Strength m              = peak;
-          m.phi                   = std::atan(rate_friction(x, dt, p));
+          m.phi                   = std::atan(rate_friction(I_per_x * x));
           std::array<double, 3> t = trial;
           return_sorted(t, surface(m));
           return t;
