@@ -18,6 +18,7 @@ namespace mpm
     point_load |= other.point_load;
     wall_slips = std::max(wall_slips, other.wall_slips);
     macro_step |= other.macro_step;
+    mean_stress_correction |= other.mean_stress_correction;
     return *this;
   }
 
@@ -70,6 +71,8 @@ namespace mpm
       l.wall_slip = add("wall slip", dim * requests.wall_slips);
     if (requests.macro_step)
       l.macro_step = add("macro step", dim + dim * dim);
+    if (requests.mean_stress_correction)
+      l.mean_stress_correction = add("F-bar mean stress", 1);
     return l;
   }
 

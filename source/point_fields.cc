@@ -23,7 +23,8 @@ namespace mpm
     with_transfer(integrator.transfer, [&](auto transfer) {
       fields.affine_velocity = decltype(transfer)::stores_affine_velocity;
     });
-    fields.macro_step = integrator.macro_time_step > 0;
+    fields.macro_step             = integrator.macro_time_step > 0;
+    fields.mean_stress_correction = integrator.f_bar;
     for (const auto &body : bodies)
       {
         fields.surface_area = fields.surface_area || body.has_surface_loads();

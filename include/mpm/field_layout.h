@@ -68,8 +68,11 @@ namespace mpm
     /// motion (x_p^n during the substeps, x_p^(n+1) while the points sit
     /// at x_p^n for the reconstruction), then the substeps' deformation
     /// increment F^(n+1) (F^n)^-1.
-    unsigned int macro_step   = absent;
-    unsigned int n_properties = 0;
+    unsigned int macro_step = absent;
+    /// 1, F-bar only: the mean stress of the point's cell minus its own,
+    /// which the internal force adds (FBar::average_mean_stress).
+    unsigned int mean_stress_correction = absent;
+    unsigned int n_properties           = 0;
 
     /// Reserve @p n consecutive slots and return the first.
     unsigned int
@@ -98,10 +101,11 @@ namespace mpm
     bool damage                    = false;
     bool surface_area              = false;
     /// Offset and load moment: only a load on a face of a shape has one.
-    bool         surface_offset = false;
-    bool         point_load     = false;
-    unsigned int wall_slips     = 0; ///< walls with friction
-    bool         macro_step     = false;
+    bool         surface_offset         = false;
+    bool         point_load             = false;
+    unsigned int wall_slips             = 0; ///< walls with friction
+    bool         macro_step             = false;
+    bool         mean_stress_correction = false; ///< F-bar
 
     /// Also ask for what @p other asks for (the stages of a scene store
     /// the fields of them all: a checkpoint carries the points from one

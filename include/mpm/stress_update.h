@@ -5,9 +5,9 @@
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
 #include <mpm/step_parts.h>
+#include <mpm/transfer/f_bar.h>
 #include <mpm/work_account.h>
 
-#include <vector>
 
 namespace mpm
 {
@@ -32,10 +32,6 @@ namespace mpm
     update(const double dt);
 
   private:
-    /// F-bar: replace each point's volume change over the step by that of
-    /// its body's points in its cell (see there).
-    void
-    average_volume_change_over_cells(const double dt);
     /// Half of the step's stress power V sigma : L dt (see there), at the
     /// stress before the update (@p before) or after it.
     void
@@ -46,8 +42,8 @@ namespace mpm
     const BackgroundGrid<dim> &grid;
     MaterialPoints<dim>       &points;
     const StepContext         &context;
-    /// Each body's reference density (BodyParameters::deformable_density).
-    std::vector<double> density_of_body;
+    /// F-bar's volume average over cells.
+    FBar<dim> cell_averages;
     /// Where the absorbed work goes (WorkAccount::absorbed).
     WorkAccount &account;
   };

@@ -72,6 +72,7 @@ namespace mpm
     , virtual_fluid(parts.virtual_fluid)
     , context(parts.context)
     , density_of_body(deformable_densities(points.bodies()))
+    , cell_averages(grid, points)
   {
   }
 
@@ -121,10 +122,13 @@ namespace mpm
     const Tensor<1, dim> gravity = prm.gravity;
     // Local copies: the compiler cannot tell that the members do not change
     // while the loop writes the nodal sums through a double *.
-    const bool with_body_forces         = loads.has_body_forces();
-    double     power                    = 0; // of the body forces
-    const bool with_point_loads         = l.point_load != FieldLayout::absent;
-    const bool with_surface_loads       = l.load_moment != FieldLayout::absent;
+    const bool with_body_forces   = loads.has_body_forces();
+    double     power              = 0; // of the body forces
+    const bool with_point_loads   = l.point_load != FieldLayout::absent;
+    const bool with_surface_loads = l.load_moment != FieldLayout::absent;
+    const bool with_f_bar = l.mean_stress_correction != FieldLayout::absent;
+    if (forces && with_f_bar)
+      cell_averages.average_mean_stress();
     const unsigned int  fields_per_node = nodes.n_fields;
     const unsigned int *fields_of_body  = nodes.field_of_body.data();
     // The nodal masses of the guard (light_mass > 0), ghosted.
@@ -198,10 +202,15 @@ namespace mpm
           }
         if (forces)
           {
-            // Internal force with the current volume and Cauchy stress.
-            const SymmetricTensor<2, dim> Vsigma =
-              q[l.volume] * Fields::symmetric<dim>(q + l.stress);
-            const bool guarded =
+            // Internal force with the current volume and Cauchy stress
+            // (with F-bar, its cell's mean stress: FBar).
+            SymmetricTensor<2, dim> sigma =
+              Fields::symmetric<dim>(q + l.stress);
+            if (with_f_bar)
+              for (unsigned int d = 0; d < dim; ++d)
+                sigma[d][d] += q[l.mean_stress_correction];
+            const SymmetricTensor<2, dim> Vsigma = q[l.volume] * sigma;
+            const bool                    guarded =
               light_mass > 0 &&
               light_node_gradients<dim>(
                 s,

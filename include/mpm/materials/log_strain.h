@@ -381,6 +381,15 @@ namespace mpm
         return true;
       }
 
+      /// The pressure-dependent flows (those with an apex, which may part)
+      /// change the volume plastically; von Mises and the viscous flows
+      /// keep it.
+      bool
+      volume_has_history() const override
+      {
+        return CanPart<Flow>::value;
+      }
+
       /// The elastic strain that carries @p sigma0 (at the point's J).
       void
       initialise_point(double                      *p,

@@ -74,6 +74,19 @@ namespace mpm
       return requests.opening;
     }
 
+    /**
+     * Can the model change a point's volume other than elastically (plastic
+     * dilatancy, a return to the apex of a pressure-dependent yield surface,
+     * grains that part)? Then a point's J is a state of its own, not a
+     * function of its pressure, and F-bar averages only each step's volume
+     * change over a cell, not J itself (FBar::average_volume_change).
+     */
+    virtual bool
+    volume_has_history() const
+    {
+      return false;
+    }
+
     /// Can the model start from a given stress (initialise_point)?
     virtual bool
     accepts_initial_stress() const

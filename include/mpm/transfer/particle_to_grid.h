@@ -11,6 +11,7 @@
 #include <mpm/integrator_parameters.h>
 #include <mpm/material_points.h>
 #include <mpm/step_parts.h>
+#include <mpm/transfer/f_bar.h>
 #include <mpm/transfer/point_loop.h>
 
 #include <vector>
@@ -81,6 +82,8 @@ namespace mpm
     /// volume of a node's support in the grid (integral of its shape
     /// function).
     LinearAlgebra::distributed::Vector<double> fluid_volume, support_volume;
+    /// F-bar's mean stress over cells, for the internal force.
+    FBar<dim> cell_averages;
   };
 } // namespace mpm
 
