@@ -1,6 +1,8 @@
 #include <mpm/basis.h>
 #include <mpm/parameters.h>
 #include <mpm/time_integrator.h>
+#include <mpm/transfer/deformation_increment.h>
+#include <mpm/transfer/f_bar.h>
 #include <mpm/transfer/strain_rate.h>
 
 #include <algorithm>
@@ -244,7 +246,8 @@ namespace mpm
   std::array<double, 2>
   TimeIntegrator<dim>::internal_work_and_stress_power(
     const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
-      &w)
+                &w,
+    const double f_bar_step)
   {
     double work = 0, power = 0;
     loop.with_scene_basis([&](const auto &basis) {
@@ -267,7 +270,7 @@ namespace mpm
         }
       nodes.velocities.update_ghost_values();
       const FieldLayout &l = parts.points.layout();
-      loop.for_each_point(basis, [&](auto &, const double *q, const auto &s) {
+      loop.for_each_point(basis, [&](auto &p, const double *q, const auto &s) {
         const Tensor<2, dim> L =
           velocity_gradient<dim>(s,
                                  nodes.velocities.get_values() +
@@ -276,9 +279,34 @@ namespace mpm
                                  Layout::v_new,
                                  strain_rate_light_mass<Basis>(prm.scheme,
                                                                min_nodal_mass));
-        power +=
-          q[l.volume] * scalar_product(Fields::symmetric<dim>(q + l.stress), L);
+        if (!prm.f_bar)
+          power += q[l.volume] *
+                   scalar_product(Fields::symmetric<dim>(q + l.stress), L);
+        else
+          {
+            // The kinematics of a short step, for F-bar below.
+            double *const x = p->get_properties().data();
+            Fields::store(L, x + l.velocity_gradient);
+            x[l.volume] *= determinant(deformation_increment(L, f_bar_step));
+          }
       });
+      if (prm.f_bar)
+        {
+          // The stress power with F-bar's strain rate L_bar, at the
+          // volumes the step started from, which are put back.
+          FBar<dim>(parts.grid, parts.points).average_volume_change(f_bar_step);
+          for (auto &p : parts.points.handler())
+            {
+              double *const        x = p.get_properties().data();
+              const Tensor<2, dim> L_bar =
+                Fields::tensor<dim>(x + l.velocity_gradient);
+              x[l.volume] /=
+                determinant(deformation_increment(L_bar, f_bar_step));
+              power +=
+                x[l.volume] *
+                scalar_product(Fields::symmetric<dim>(x + l.stress), L_bar);
+            }
+        }
     });
     return {{Utilities::MPI::sum(work, context.comm),
              Utilities::MPI::sum(power, context.comm)}};

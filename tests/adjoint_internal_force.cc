@@ -13,6 +13,15 @@
 // prints the relative residual |work + power| / sum |f_I . w_I| and fails
 // above 1e-12. A uniform w (the forces' sum: momentum) must give work 0.
 // It also runs on several ranks (ctest adjoint_internal_force_mpi2).
+//
+// With F-bar the stress power is taken with F-bar's strain rate L_bar(w),
+// and the force must then take each point's stress with its cell's mean
+// stress: with the point's own, the residual is sum_p V_p (m_p - m_cell)
+// (tr L_p - tr L_cell), 0.1-0.4 of the work here, and the softening slope
+// of benchmarks/slope gained a quarter of its energy from it. L_bar is
+// linear in w only as the step goes to 0, and its volume ratio loses digits
+// as it does: with the default step of 1e-9 s the residual is below 1e-8
+// (1e-8 s: 8e-7, 1e-10 s: 8e-7), and the bound is 1e-6.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
@@ -83,7 +92,8 @@ end
 bool
 check(const unsigned int scene,
       const std::string &scheme,
-      const std::string &basis)
+      const std::string &basis,
+      const bool         f_bar)
 {
   ParameterHandler prm;
   mpm::declare_scene_parameters(prm, 2);
@@ -100,6 +110,7 @@ end
   prm.enter_subsection("Simulation");
   prm.set("update scheme", scheme);
   prm.set("basis", basis);
+  prm.set("F-bar", f_bar);
   prm.leave_subsection();
 
   const MPI_Comm                      comm     = MPI_COMM_WORLD;
@@ -177,13 +188,14 @@ end
   const double residual = std::abs(work + power) / scale;
   // Momentum: the forces sum to zero (to round-off of their size).
   const double force_sum = std::hypot(sum_x, sum_y) / scale;
-  const bool   ok        = residual < 1e-12 && force_sum < 1e-12 &&
-                  std::abs(none_x) + std::abs(none_y) < 1e-12 * scale;
+  const double tolerance = f_bar ? 1e-6 : 1e-12;
+  const bool   ok = residual < tolerance && force_sum < 1e-12 &&
+                  std::abs(none_x) + std::abs(none_y) < tolerance * scale;
   if (Utilities::MPI::this_mpi_process(comm) == 0)
     std::cout << "scene " << scene << " " << std::left << std::setw(5) << scheme
-              << std::setw(20) << basis << std::scientific
-              << std::setprecision(1) << " work " << work << ", residual "
-              << residual << ", force sum " << force_sum
+              << std::setw(20) << basis << (f_bar ? "F-bar " : "      ")
+              << std::scientific << std::setprecision(1) << " work " << work
+              << ", residual " << residual << ", force sum " << force_sum
               << (ok ? "" : "  FAILED") << std::endl;
   return ok;
 }
@@ -200,7 +212,8 @@ main(int argc, char **argv)
                                       "cpGIMP",
                                       "quadratic B-spline",
                                       "cubic B-spline"})
-        ok = check(scene, scheme, basis) && ok;
+        for (const bool f_bar : {false, true})
+          ok = check(scene, scheme, basis, f_bar) && ok;
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << (ok ? "passed" : "FAILED") << std::endl;
   return ok ? 0 : 1;

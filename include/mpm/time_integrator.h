@@ -214,12 +214,15 @@ namespace mpm
      * the strain rate as this scene's step computes them from the points'
      * current stresses and positions. Their sum vanishes when the two
      * operators are adjoint. Gravity and loads must be off (they add to
-     * f). Summed over the ranks (collective).
+     * f). With F-bar, L_bar(w) of a step of @p f_bar_step (F-bar's volume
+     * average is linear in w only as the step goes to 0). Summed over the
+     * ranks (collective).
      */
     std::array<double, 2>
     internal_work_and_stress_power(
       const std::function<Tensor<1, dim>(const std::array<unsigned int, dim> &)>
-        &w);
+                  &w,
+      const double f_bar_step = 1e-9);
 
   private:
     friend class Substepper<dim>;
