@@ -177,11 +177,15 @@ namespace mpm
       "false",
       Patterns::Bool(),
       "Volumetric locking remedy for nearly incompressible materials "
-      "(Poisson's ratio near 0.5, fluids): each step, every point's volume "
-      "change is replaced by the volume change of its body's points in its "
-      "cell (F-bar), so that a cell carries one volumetric constraint "
-      "instead of one per point. The deviatoric part of each point's "
-      "deformation is kept.");
+      "(Poisson's ratio near 0.5, fluids; plastic flow that keeps the "
+      "volume, as Mohr-Coulomb with psi = 0): each step, every point's "
+      "volume change is replaced by the volume change of its body's points "
+      "in its cell (F-bar), so that a cell carries one volumetric constraint "
+      "instead of one per point, and the internal force takes each point's "
+      "stress with its cell's mean stress (the pair keeps the energy). The "
+      "deviatoric part of each point's deformation is kept. Materials whose "
+      "volume has a history (Mohr-Coulomb, Drucker-Prager) share each "
+      "step's volume change; the others share J itself.");
     prm.declare_entry(
       "energy growth bound",
       "0.25",
