@@ -1530,8 +1530,9 @@ endif()
 #     front (0.5 m thick): 12.65 m beyond the toe at 2 m cells, 16.59 at
 #     1 m (ladder 12.65, 16.59, 19.60, 21.06 m to 0.25 m cells:
 #     benchmarks/slope/README.md). The 1 m rung (Release) is the one that
-#     failed before F-bar was made consistent: its slide sprayed points
-#     and ran out 22.4 m.
+#     fails with the F-bar before session 39: its slide sprays points, one
+#     leaves the grid at x = -30 m and the run stops (22.4 m with points
+#     removed); the 2 m rung passes there too (12.53 m) and only guards.
 add_test(NAME slope_runout
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/slope/runout.py
     --exe $<TARGET_FILE:dealii-mpm> --check --ladder "30,6" --expect 11,14.5)
