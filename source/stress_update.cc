@@ -1,9 +1,8 @@
-// The stress stage of the step: F-bar's volume average (transfer/f_bar.h), each
-// body's material update, and the stress power they absorb (the energy
+// The stress stage of the step: F-bar's volume average (transfer/f_bar.h),
+// each body's material update, and the stress power they absorb (the energy
 // residual).
 #include <mpm/stress_update.h>
 #include <mpm/transfer/deformation_increment.h>
-
 
 namespace mpm
 {

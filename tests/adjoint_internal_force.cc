@@ -17,8 +17,8 @@
 // With F-bar the stress power is taken with F-bar's strain rate L_bar(w),
 // and the force must then take each point's stress with its cell's mean
 // stress: with the point's own, the residual is sum_p V_p (m_p - m_cell)
-// (tr L_p - tr L_cell), 0.1-0.4 of the work here, and the softening slope
-// of benchmarks/slope gained a quarter of its energy from it. L_bar is
+// (tr L_p - tr L_cell), up to the size of the work here, and the softening
+// slope of benchmarks/slope gained a quarter of its energy from it. L_bar is
 // linear in w only as the step goes to 0, and its volume ratio loses digits
 // as it does: with the default step of 1e-9 s the residual is below 1e-8
 // (1e-8 s: 8e-7, 1e-10 s: 8e-7), and the bound is 1e-6.
@@ -189,7 +189,7 @@ end
   // Momentum: the forces sum to zero (to round-off of their size).
   const double force_sum = std::hypot(sum_x, sum_y) / scale;
   const double tolerance = f_bar ? 1e-6 : 1e-12;
-  const bool   ok = residual < tolerance && force_sum < 1e-12 &&
+  const bool   ok        = residual < tolerance && force_sum < 1e-12 &&
                   std::abs(none_x) + std::abs(none_y) < tolerance * scale;
   if (Utilities::MPI::this_mpi_process(comm) == 0)
     std::cout << "scene " << scene << " " << std::left << std::setw(5) << scheme

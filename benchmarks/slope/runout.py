@@ -24,7 +24,7 @@ equilibrium, stage 1 starts from its checkpoint (the points keep the
 fields the softened soil needs), the mass is kept, the slope fails (the
 deposit front passes the toe by more than --min-runout), it comes to
 rest (kinetic energy below 1e-2 of its largest), the numerics create no
-energy (residual below --max-residual) and the deposit front's runout
+energy (residual at most --max-residual) and the deposit front's runout
 lies in --expect LOW,HIGH.
 """
 import argparse, csv, os, subprocess, sys, tempfile, time

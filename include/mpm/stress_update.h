@@ -8,7 +8,6 @@
 #include <mpm/transfer/f_bar.h>
 #include <mpm/work_account.h>
 
-
 namespace mpm
 {
   using namespace dealii;

@@ -54,12 +54,11 @@ namespace mpm
             if (density_of_body[body] > 0) // not a rigid body
               {
                 const unsigned int bin = c * n_bodies + body;
-                add(q, sums[bin]);
-                deformable.emplace_back(q, bin);
+                deformable.push_back({q, bin, add(q, sums[bin])});
               }
           }
-        for (const auto &[q, bin] : deformable)
-          apply(q, sums[bin], n_in_cell[bin / n_bodies] > 1);
+        for (const auto &[q, bin, own] : deformable)
+          apply(q, sums[bin], own, n_in_cell[bin / n_bodies] > 1);
       }
   }
 
@@ -110,14 +109,19 @@ namespace mpm
     };
     for_each_cell_bin(
       [&](const double *q, std::array<double, 2> &bin) {
+        const double base = base_volume(q);
         bin[0] += q[l.volume];
-        bin[1] += base_volume(q);
+        bin[1] += base;
+        return base;
       },
-      [&](double *q, const std::array<double, 2> &bin, const bool shared) {
+      [&](double                      *q,
+          const std::array<double, 2> &bin,
+          const double                 base,
+          const bool                   shared) {
         // A point alone in its cell keeps its own volume change.
         if (!shared)
           return;
-        const double V     = base_volume(q) * bin[0] / bin[1];
+        const double V     = base * bin[0] / bin[1];
         const double ratio = V / q[l.volume];
         const double scale = dim == 1   ? ratio
                              : dim == 2 ? std::sqrt(ratio)
@@ -159,12 +163,16 @@ namespace mpm
     };
     for_each_cell_bin(
       [&](const double *q, std::array<double, 2> &bin) {
-        bin[0] += q[l.volume] * mean_stress(q);
+        const double m = mean_stress(q);
+        bin[0] += q[l.volume] * m;
         bin[1] += q[l.volume];
+        return m;
       },
-      [&](double *q, const std::array<double, 2> &bin, const bool shared) {
-        q[l.mean_stress_correction] =
-          shared ? bin[0] / bin[1] - mean_stress(q) : 0.;
+      [&](double                      *q,
+          const std::array<double, 2> &bin,
+          const double                 m,
+          const bool                   shared) {
+        q[l.mean_stress_correction] = shared ? bin[0] / bin[1] - m : 0.;
       });
   }
 

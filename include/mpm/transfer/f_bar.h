@@ -44,10 +44,11 @@ namespace mpm
 
   private:
     /**
-     * Call @p add(q, sums) for every point of a deformable body with the
-     * two sums of its (cell, body) bin, then @p apply(q, sums) with the
-     * bin's totals, tile by tile; points alone in their cell are not
-     * applied to (they keep their own values).
+     * Tile by tile: call @p add(q, sums) for every point of a deformable
+     * body with the two sums of its (cell, body) bin, which returns the
+     * point's own value (computed once), then @p apply(q, sums, own,
+     * shared) with the bin's totals, that value and whether the point
+     * shares its cell with others (a point alone keeps its own values).
      */
     template <typename Add, typename Apply>
     void
@@ -61,9 +62,15 @@ namespace mpm
     /// has a history), or J itself.
     std::vector<bool> by_increment;
     /// Scratch of for_each_cell_bin, kept between calls.
-    std::vector<std::array<double, 2>>             sums;
-    std::vector<unsigned int>                      n_in_cell;
-    std::vector<std::pair<double *, unsigned int>> deformable;
+    std::vector<std::array<double, 2>> sums;
+    std::vector<unsigned int>          n_in_cell;
+    struct BinnedPoint
+    {
+      double      *q;
+      unsigned int bin;
+      double       own; ///< what add() returned for it
+    };
+    std::vector<BinnedPoint> deformable;
   };
 } // namespace mpm
 
