@@ -388,10 +388,10 @@ namespace mpm
       "With 'body extents' and gravity along a grid axis: > 0 adds, for "
       "each other axis, columns body<b>_<axis>_deposit_min and _max, the "
       "furthest edges of a body where it is at least this thick along "
-      "gravity, in m (in each column of grid cells, from the lowest "
-      "bottom to the highest top of the body's points, each a cube of its "
-      "volume; the edge is that of the outermost point of such a column). "
-      "0: none.");
+      "gravity, in m (in each column of grid cells, the volume of the "
+      "body's points over the column's width, gaps closed; the edge is "
+      "that of the outermost point of such a column, each point a cube of "
+      "its volume). 0: none.");
     prm.declare_entry("progress interval",
                       "2",
                       Patterns::Anything(),

@@ -85,8 +85,10 @@ namespace mpm
             loop,
             work}
     , stresses(parts)
-    , usf_contact_rule(prm.scheme == UpdateScheme::USF && parts.contact &&
-                       parts.contact->deformable_bodies_touch())
+    , usf_trial_forces(
+        prm.scheme == UpdateScheme::USF &&
+        ((parts.contact && parts.contact->deformable_bodies_touch()) ||
+         GridFaces<dim>::has_unilateral_face(parts.grid.parameters())))
     // Nodal masses are stored with the mass scaling (see
     // GridUpdate::velocities_from_momentum), and so is the guard's
     // threshold.
@@ -171,16 +173,17 @@ namespace mpm
           stresses.update(dt);
           break;
         case UpdateScheme::USF:
-          // With deformable bodies in contact, the forces of the stress the
-          // step starts from tell where they press on each other (see
-          // GridUpdate::apply_contact); the updated stress's replace them
-          // below.
-          to_grid.scatter(basis, true, usf_contact_rule);
+          // With deformable bodies in contact or friction faces, the forces
+          // of the stress the step starts from tell where the bodies press
+          // on each other or on a face (see
+          // GridUpdate::usf_strain_rate_velocities); the updated stress's
+          // replace them below.
+          to_grid.scatter(basis, true, usf_trial_forces);
           grid_update.velocities_from_momentum(Layout::v_old);
-          if (usf_contact_rule)
-            grid_update.strain_rate_velocities_with_contact(dt);
+          if (usf_trial_forces)
+            grid_update.usf_strain_rate_velocities(dt);
           to_points.update_kinematics(
-            basis, dt, usf_contact_rule ? Layout::v_new : Layout::v_old);
+            basis, dt, usf_trial_forces ? Layout::v_new : Layout::v_old);
           stresses.update(dt);
           if (prm.basis == BasisType::cpgimp)
             {

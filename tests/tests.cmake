@@ -465,7 +465,11 @@ mpm_test(column_collapse_mpi2 PRM ../benchmarks/granular/column_collapse.prm NP 
 #    Where bodies reach (reviewed): the wedge's deposit edge 0.775 (exact
 #    0.75, the edge of the outermost point of the last column 0.05 thick),
 #    the strip's 99 % front 0.9941 (the last column of points holds more than
-#    1 % of them), the boxes as before. A deposit front needs gravity.
+#    1 % of them), the boxes as before. The third body, a wall with two
+#    sheets one point thick reaching out from its foot and its top, has its
+#    deposit edge at the wall, 0.05: a column's thickness is the volume of
+#    its points over its width (0.025 beyond the wall), not their span
+#    (0.3, which gave 1). A deposit front needs gravity.
 mpm_test(body_fronts)
 mpm_test(bad_front_thickness PRM free_expansion.prm EXIT 1
   ARGS -s "Output/body extents=true" -s "Output/front thickness=0.01"
@@ -608,6 +612,21 @@ if(NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
       --exe $<TARGET_FILE:dealii-mpm> --cells 4 --cfl 0.5,0.125 --check
       -s "Simulation/transfer=FLIP" -s "Simulation/PIC relaxation time=0.1")
 endif()
+#    A lone point dropped on a friction face (issue 29; the slope runout's
+#    point that kept bouncing ahead of the deposit): with MUSL and USF its
+#    strain rate sees the floor hold the nodes its stress pushed into it,
+#    so the stress relaxes as it leaves the floor, and the bodies' energy
+#    and the energy residual stay within 10 % of the energy put in
+#    (measured 0 and 0.033 at most; the run stops otherwise). Before, the
+#    floor threw the point off with a stress that never relaxed: the runs
+#    stopped at t = 0.9 and 0.85 s with 13 % and 9 % more energy than the
+#    point started with. USL already held them (its strain rate comes from
+#    the force update's velocities).
+foreach(scheme MUSL USF)
+  mpm_test(lone_point_bounce_${scheme} PRM lone_point_bounce.prm
+    ARGS -s "Simulation/update scheme=${scheme}"
+    OUTPUT "Finished [0-9]+ steps to t = 4 ")
+endforeach()
 #    The collapse of a column of aluminium rods (Bui et al. 2008; MUSL,
 #    FLIP with a PIC relaxation time of 0.1 s, quadratic B-spline, the rods'
 #    mu(I) rate strengthening, h = 5 mm): the toe (where the deposit is a
@@ -1526,16 +1545,18 @@ endif()
 #     softening to no cohesion adds the opening field (the points keep the
 #     fields of every stage), the mass is kept, the slope fails and comes
 #     to rest (kinetic energy 0.005 of its largest), and the numerics
-#     create no energy (residual -0.17 of the energy put in). The deposit
-#     front (0.5 m thick): 12.65 m beyond the toe at 2 m cells, 16.59 at
-#     1 m (ladder 12.65, 16.59, 19.60, 21.06 m to 0.25 m cells:
-#     benchmarks/slope/README.md). The 1 m rung (Release) is the one that
-#     fails with the F-bar before session 39: its slide sprays points, one
-#     leaves the grid at x = -30 m and the run stops (22.4 m with points
-#     removed); the 2 m rung passes there too (12.53 m) and only guards.
+#     create no energy (residual -0.18 of the energy put in). The deposit
+#     front (0.5 m thick): 10.40 m beyond the toe at 2 m cells, 16.22 at
+#     1 m (ladder: benchmarks/slope/README.md). At 2 m a point is 1 m
+#     square, half a column's 0.5 m: the lone point at 12.76 m makes its
+#     column 0.49999 thick and does not count, by round-off, hence the
+#     wide bound. The 1 m rung (Release) is the one that fails with the
+#     F-bar before session 39: its slide sprays points, one leaves the grid
+#     at x = -30 m and the run stops (22.4 m with points removed); the 2 m
+#     rung passes there too and only guards.
 add_test(NAME slope_runout
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/slope/runout.py
-    --exe $<TARGET_FILE:dealii-mpm> --check --ladder "30,6" --expect 11,14.5)
+    --exe $<TARGET_FILE:dealii-mpm> --check --ladder "30,6" --expect 9.5,14.5)
 if(NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
   add_test(NAME slope_runout_1m
     COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/benchmarks/slope/runout.py

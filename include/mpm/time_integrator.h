@@ -262,9 +262,10 @@ namespace mpm
     const StepParts<dim> parts;
     /// F-bar, the materials' update and the stress power.
     StressUpdate<dim> stresses;
-    /// USF with deformable bodies that touch (see
-    /// GridUpdate::strain_rate_velocities_with_contact).
-    const bool usf_contact_rule;
+    /// USF with deformable bodies that touch or friction faces: its
+    /// strain rate needs a trial force update (see
+    /// GridUpdate::usf_strain_rate_velocities).
+    const bool usf_trial_forces;
 
     /// The small-mass guard's nodal mass (see strain_rate_light_mass in
     /// transfer/strain_rate.h).

@@ -76,7 +76,7 @@ namespace mpm
     const std::vector<double> cells =
       thickness > 0 ? columns_of_cells(points) : std::vector<double>();
     const auto         &prm        = grid.parameters();
-    const unsigned int  per_column = 2 + 2 * horizontal.size();
+    const unsigned int  per_column = 1 + 2 * horizontal.size();
     std::vector<double> v;
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
@@ -120,8 +120,7 @@ namespace mpm
             const double *c        = cells.data() + per_column * n_columns * b;
             double        thickest = -inf;
             for (unsigned int k = 0; k < n_columns; ++k)
-              thickest =
-                std::max(thickest, -c[per_column * k + 1] - c[per_column * k]);
+              thickest = std::max(thickest, c[per_column * k]);
             const double enough = std::min(thickness, thickest);
             for (unsigned int a = 0; a < horizontal.size(); ++a)
               {
@@ -129,10 +128,10 @@ namespace mpm
                 for (unsigned int k = 0; k < n_columns; ++k)
                   {
                     const double *column = c + per_column * k;
-                    if (-column[1] - column[0] >= enough)
+                    if (column[0] > 0 && column[0] >= enough)
                       {
-                        low  = std::min(low, column[2 + 2 * a]);
-                        high = std::max(high, -column[3 + 2 * a]);
+                        low  = std::min(low, column[1 + 2 * a]);
+                        high = std::max(high, -column[2 + 2 * a]);
                       }
                   }
                 v.push_back(low);
@@ -231,30 +230,45 @@ namespace mpm
   std::vector<double>
   BodyExtents<dim>::columns_of_cells(const MaterialPoints<dim> &points) const
   {
-    const unsigned int  per_column = 2 + 2 * horizontal.size();
-    std::vector<double> lowest(per_column * n_columns * n_bodies,
+    const unsigned int  n_edges = 2 * horizontal.size();
+    std::vector<double> volume(n_columns * n_bodies, 0.);
+    std::vector<double> lowest(n_edges * n_columns * n_bodies,
                                std::numeric_limits<double>::infinity());
     const FieldLayout  &l = points.layout();
     for (const auto &p : points.handler())
       {
-        const double     *q = p.get_properties().data();
-        const Point<dim> &x = p.get_location();
-        const double      r = 0.5 * std::pow(q[l.volume], 1. / dim);
-        double           *c =
-          lowest.data() +
-          per_column *
-            (n_columns * static_cast<unsigned int>(q[l.body]) + column_of(x));
-        c[0] = std::min(c[0], x[vertical] - r);
-        c[1] = std::min(c[1], -(x[vertical] + r));
+        const double      *q = p.get_properties().data();
+        const Point<dim>  &x = p.get_location();
+        const double       r = 0.5 * std::pow(q[l.volume], 1. / dim);
+        const unsigned int k =
+          n_columns * static_cast<unsigned int>(q[l.body]) + column_of(x);
+        volume[k] += q[l.volume];
+        double *edge = lowest.data() + n_edges * k;
         for (unsigned int a = 0; a < horizontal.size(); ++a)
           {
-            c[2 + 2 * a] = std::min(c[2 + 2 * a], x[horizontal[a]] - r);
-            c[3 + 2 * a] = std::min(c[3 + 2 * a], -(x[horizontal[a]] + r));
+            edge[2 * a] = std::min(edge[2 * a], x[horizontal[a]] - r);
+            edge[2 * a + 1] =
+              std::min(edge[2 * a + 1], -(x[horizontal[a]] + r));
           }
       }
     MPI_Allreduce(
+      MPI_IN_PLACE, volume.data(), volume.size(), MPI_DOUBLE, MPI_SUM, comm);
+    MPI_Allreduce(
       MPI_IN_PLACE, lowest.data(), lowest.size(), MPI_DOUBLE, MPI_MIN, comm);
-    return lowest;
+    // The thickness of a column: its volume over its cross-section, the
+    // cells' width across gravity (their area in 3D).
+    double cross_section = 1;
+    for (const unsigned int d : horizontal)
+      cross_section *= grid.cell_size()[d];
+    std::vector<double> c((1 + n_edges) * n_columns * n_bodies);
+    for (unsigned int k = 0; k < volume.size(); ++k)
+      {
+        c[(1 + n_edges) * k] = volume[k] / cross_section;
+        std::copy(lowest.begin() + n_edges * k,
+                  lowest.begin() + n_edges * (k + 1),
+                  c.begin() + (1 + n_edges) * k + 1);
+      }
+    return c;
   }
 
 

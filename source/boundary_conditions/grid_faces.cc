@@ -38,6 +38,7 @@ namespace mpm
   {
     constrained_nodes.clear();
     friction_nodes.clear();
+    pressed_faces.clear();
     absorbing_nodes.clear();
     const GridParameters<dim> &prm = grid.parameters();
     const Tensor<1, dim>      &h   = grid.cell_size();
@@ -93,7 +94,8 @@ namespace mpm
                         const unsigned int n_fields,
                         const unsigned int slot,
                         const double       dt,
-                        WorkAccount       *work) const
+                        WorkAccount       *work,
+                        const bool         for_strain_rate)
   {
     using Layout                 = NodalLayout<dim>;
     constexpr unsigned int width = Layout::n_velocities;
@@ -114,15 +116,27 @@ namespace mpm
               }
         }
     const double mu = grid.parameters().friction_coefficient;
-    for (const auto &[i, faces] : friction_nodes)
+    // The force update (dt > 0) records where the faces pressed.
+    if (dt > 0)
+      pressed_faces.assign(friction_nodes.size() * n_fields, 0);
+    const bool hold = for_strain_rate && !pressed_faces.empty();
+    for (unsigned int k = 0; k < friction_nodes.size(); ++k)
       for (unsigned int f = 0; f < n_fields; ++f)
-        for (unsigned int face = 0; face < 2 * dim; ++face)
-          if (faces & (1u << face))
-            coulomb_contact_of_node(u + width * Layout::slot_of(i, f, n_fields),
-                                    slot,
-                                    face,
-                                    mu,
-                                    work);
+        {
+          const auto [i, faces] = friction_nodes[k];
+          double *node          = u + width * Layout::slot_of(i, f, n_fields);
+          for (unsigned int face = 0; face < 2 * dim; ++face)
+            if (faces & (1u << face))
+              {
+                const bool pressed =
+                  coulomb_contact_of_node(node, slot, face, mu, work);
+                if (dt > 0 && pressed)
+                  pressed_faces[k * n_fields + f] |= 1u << face;
+                else if (hold &&
+                         (pressed_faces[k * n_fields + f] & (1u << face)))
+                  node[slot + face / 2] = 0;
+              }
+        }
     if (!(dt > 0))
       return;
     // The absorbing faces' dashpots act at the force update: the force
@@ -155,7 +169,15 @@ namespace mpm
 
 
   template <int dim>
-  void
+  bool
+  GridFaces<dim>::has_unilateral_face(const GridParameters<dim> &prm)
+  {
+    return std::any_of(prm.boundary.begin(), prm.boundary.end(), is_unilateral);
+  }
+
+
+  template <int dim>
+  bool
   GridFaces<dim>::coulomb_contact_of_node(double            *node,
                                           const unsigned int slot,
                                           const unsigned int face,
@@ -164,25 +186,23 @@ namespace mpm
   {
     double *v = node + slot;
     if (work == nullptr)
-      {
-        apply_coulomb_contact(v, face, mu);
-        return;
-      }
+      return apply_coulomb_contact(v, face, mu);
     // The normal impulse is the constraint's, the tangential one
     // friction's.
     const unsigned int axis = face / 2;
     double             before[dim];
     std::copy(v, v + dim, before);
-    apply_coulomb_contact(v, face, mu);
-    const double m = node[NodalLayout<dim>::node_mass];
+    const bool   pressed = apply_coulomb_contact(v, face, mu);
+    const double m       = node[NodalLayout<dim>::node_mass];
     for (unsigned int d = 0; d < dim; ++d)
       (d == axis ? work->face_constraint : work->face_friction) += impulse_work(
         m, before[d], v[d], node[NodalLayout<dim>::v_old + d], v[d]);
+    return pressed;
   }
 
 
   template <int dim>
-  void
+  bool
   GridFaces<dim>::apply_coulomb_contact(double            *v,
                                         const unsigned int face,
                                         const double       mu)
@@ -194,19 +214,20 @@ namespace mpm
     const double       sign   = (face % 2 == 0) ? -1. : 1.;
     const double       inward = sign * v[axis];
     if (!(inward > 0))
-      return;
+      return false;
     v[axis]              = 0;
     double tangential_sq = 0;
     for (unsigned int d = 0; d < dim; ++d)
       if (d != axis)
         tangential_sq += v[d] * v[d];
     if (tangential_sq == 0)
-      return;
+      return true;
     const double tangential = std::sqrt(tangential_sq);
     const double scale      = std::max(0., 1. - mu * inward / tangential);
     for (unsigned int d = 0; d < dim; ++d)
       if (d != axis)
         v[d] *= scale;
+    return true;
   }
 
 

@@ -263,7 +263,8 @@ namespace mpm
                 nodes.n_fields,
                 slot,
                 dt,
-                account_grid_work && dt > 0 ? &work : nullptr);
+                account_grid_work && dt > 0 ? &work : nullptr,
+                for_strain_rate);
     if (velocity_region.enabled())
       for (unsigned int f = 0; f < nodes.n_fields; ++f)
         loads.add_work(velocity_region.enforce(
@@ -392,18 +393,57 @@ namespace mpm
   }
 
 
+  /**
+   * USF's strain rate comes from the velocities transferred at the step's
+   * start, before any force update, and a unilateral constraint decides
+   * there on the transferred velocity alone. What the constraint will
+   * hold is what the stress pushes into it at the force update: try one,
+   * with the forces of the stress the step starts from, and hold the
+   * strain rate's velocities where it presses (the same rules as MUSL's,
+   * apply_contact() and GridFaces::apply()). Only the sign of the
+   * approach matters, so damping and Newmark's factor are left out, and
+   * no work is accounted.
+   */
+  template <int dim>
+  void
+  GridUpdate<dim>::usf_strain_rate_velocities(const double dt)
+  {
+    TimerOutput::Scope scope(context.timer, "grid update");
+    const double      *g       = nodes.sums.get_values();
+    double            *u       = nodes.velocities.get_values();
+    const unsigned int n_slots = nodes.n_owned_slots();
+    if (faces.has_unilateral_face(grid.parameters()))
+      {
+        for (unsigned int i = 0; i < n_slots; ++i)
+          {
+            double      *vel  = u + n_velocities * i;
+            const double dt_m = vel[node_mass] > 0 ? dt / vel[node_mass] : 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              vel[v_new + d] =
+                vel[v_old + d] + dt_m * g[n_sums * i + force + d];
+          }
+        faces.apply(u, nodes.n_fields, v_new, dt);
+      }
+    for (unsigned int i = 0; i < n_slots; ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        u[n_velocities * i + v_new + d] = u[n_velocities * i + v_old + d];
+    if (contact && contact->deformable_bodies_touch())
+      strain_rate_velocities_with_contact(dt);
+    if (faces.has_unilateral_face(grid.parameters()))
+      faces.apply(u, nodes.n_fields, v_new, 0., nullptr, true);
+    nodes.velocities.update_ghost_values();
+  }
+
+
   template <int dim>
   void
   GridUpdate<dim>::strain_rate_velocities_with_contact(const double dt)
   {
-    TimerOutput::Scope scope(context.timer, "grid update");
-    const double      *g    = nodes.sums.get_values();
-    const double      *data = nodes.contact_data.get_values();
-    double            *u    = nodes.velocities.get_values();
+    const double *g    = nodes.sums.get_values();
+    const double *data = nodes.contact_data.get_values();
+    double       *u    = nodes.velocities.get_values();
     contact->set_time(context.t);
-    // A node's fields, to try the force update on: only the sign of the
-    // approach matters, so damping and Newmark's factor are left out, and
-    // no reaction is measured.
+    // A node's fields, to try the force update on.
     std::vector<double>         trial(nodes.n_fields * n_velocities);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
     for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
@@ -411,12 +451,7 @@ namespace mpm
         double      *node      = u + n_velocities * nodes.slot_of(i, 0);
         unsigned int n_present = 0;
         for (unsigned int f = 0; f < nodes.n_fields; ++f)
-          {
-            double *vel = node + n_velocities * f;
-            for (unsigned int d = 0; d < dim; ++d)
-              vel[v_new + d] = vel[v_old + d];
-            n_present += vel[node_mass] > 0;
-          }
+          n_present += node[n_velocities * f + node_mass] > 0;
         if (n_present < 2)
           continue;
         std::copy(node, node + nodes.n_fields * n_velocities, trial.begin());
@@ -440,7 +475,6 @@ namespace mpm
           contact->correct_node(
             node, n_velocities, v_new, node_data, light_mass, true, impulse);
       }
-    nodes.velocities.update_ghost_values();
   }
 
 

@@ -27,11 +27,14 @@ namespace mpm
    * - with a 'front thickness' T > 0 and gravity along a grid axis, for
    *   each other axis body<b>_<axis>_deposit_min and _max: the furthest
    *   edge of the body where it is at least T thick along gravity. The
-   *   thickness is taken in each column of grid cells from the highest
-   *   top to the lowest bottom of the body's points there, each point a
-   *   cube of its volume; a column thick enough counts with the edge of
-   *   its outermost point. If no column is that thick, the thickest one
-   *   counts.
+   *   thickness of a column of grid cells is the volume of the body's
+   *   points in it over the column's cross-section: the depth of its
+   *   material with the gaps closed, so that points thrown up above a
+   *   thin sheet (a lone point bouncing ahead of a landslide's deposit)
+   *   do not make it thick, as the distance from its lowest to its highest
+   *   point did (a sheet 0.3 m thick read 2 m). A column thick enough
+   *   counts with the edge of its outermost point, each point a cube of
+   *   its volume. If no column is that thick, the thickest one counts.
    * Positions are the points' (the box and the percentile front), or the
    * edges of their cubes (the deposit). A body without points has an empty
    * box (+inf, -inf) and fronts.
@@ -66,9 +69,10 @@ namespace mpm
     /// ranks, in bins of 1 / bins_per_cell of a cell.
     std::vector<double>
     histograms(const MaterialPoints<dim> &points) const;
-    /// Per body and column of cells across gravity: the lowest bottom and
-    /// -(highest top) along gravity, and per other axis the lowest -edge
-    /// and -(highest +edge) of the points' cubes, over all ranks.
+    /// Per body and column of cells across gravity: its thickness (the
+    /// points' volume over its cross-section), and per other axis the
+    /// lowest -edge and -(highest +edge) of the points' cubes, over all
+    /// ranks.
     std::vector<double>
     columns_of_cells(const MaterialPoints<dim> &points) const;
     /// The column of cells across gravity that holds @p x.

@@ -45,6 +45,14 @@ namespace mpm
   {
     return kind == BoundaryType::fixed || kind == BoundaryType::friction;
   }
+
+  /// Does a face of kind @p kind hold only what moves into it, so that
+  /// the step must know where its nodes were pressed (GridFaces::apply)?
+  inline bool
+  is_unilateral(const BoundaryType kind)
+  {
+    return kind == BoundaryType::friction;
+  }
 } // namespace mpm
 
 #endif

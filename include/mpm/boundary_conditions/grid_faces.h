@@ -20,6 +20,8 @@ namespace mpm
    * - fixed, slip: the components the face holds are set to zero;
    * - friction: Coulomb contact, a velocity into the face is removed and
    *   friction takes at most mu times that from the tangential velocity;
+   *   the nodes it pressed at the force update keep their normal
+   *   velocity 0 in MUSL's strain-rate velocities (apply());
    * - absorbing: a dashpot rho c on the normal and the tangential
    *   components (Lysmer-Kuhlemeyer), only at the force update.
    *
@@ -51,25 +53,46 @@ namespace mpm
      * impulses goes to its sum (WorkAccount::face_friction,
      * face_constraint), at the mean of the node's velocities at the
      * step's start and end.
+     *
+     * @p for_strain_rate: MUSL's strain-rate velocities, transferred anew
+     * after the force update. A friction face holds only what moves into
+     * it, so it would let a node go that it held at the force update if
+     * the transferred velocity now leaves the face. A body that presses
+     * on the face pushes its nodes there into it by its stress and gets
+     * the face's reaction back; a strain rate that sees those nodes leave
+     * with the body's velocity is 0, so the stress that pushed does not
+     * relax: a lone point, all of whose nodes carry its own velocity, was
+     * thrown off the face again and again by a stress that each landing
+     * made larger (benchmarks/slope/README.md). So where the face pressed
+     * at this step's force update, the normal velocity stays 0 here, as
+     * USL's strain rate sees it (the same rule as deformable contact's,
+     * GridUpdate::apply_contact).
      */
     void
     apply(double            *u,
           const unsigned int n_fields,
           const unsigned int slot,
           const double       dt,
-          WorkAccount       *work = nullptr) const;
+          WorkAccount       *work            = nullptr,
+          const bool         for_strain_rate = false);
+
+    /// Does any face of the grid of @p prm hold only what moves into it
+    /// (a friction face, is_unilateral())?
+    static bool
+    has_unilateral_face(const GridParameters<dim> &prm);
 
     /// Coulomb contact of the nodal velocity @p v with grid face @p face
-    /// (f = x min, x max, y min, ...) of friction coefficient @p mu.
-    static void
+    /// (f = x min, x max, y min, ...) of friction coefficient @p mu; true
+    /// if the velocity moved into the face (the face pressed).
+    static bool
     apply_coulomb_contact(double *v, const unsigned int face, const double mu);
 
   private:
     /// Coulomb contact of the velocity in @p slot of the node @p node
     /// (its entry of NodalLayout::n_velocities values) with @p face; with
     /// @p work, the work of the normal impulse (a constraint's) and of the
-    /// tangential one (friction's).
-    static void
+    /// tangential one (friction's); true if the face pressed.
+    static bool
     coulomb_contact_of_node(double            *node,
                             const unsigned int slot,
                             const unsigned int face,
@@ -93,6 +116,10 @@ namespace mpm
     /// Owned nodes on friction faces and the bit mask of those faces
     /// (bit f: face f = x min, x max, y min, ...).
     std::vector<std::pair<unsigned int, unsigned int>> friction_nodes;
+    /// For each entry of friction_nodes and each field, the faces that
+    /// pressed at the last force update (bit f: face f), for MUSL's
+    /// strain-rate velocities of the same step.
+    std::vector<unsigned int> pressed_faces;
     /// Owned nodes on absorbing faces, one entry per node and face.
     std::vector<AbsorbingNode> absorbing_nodes;
   };

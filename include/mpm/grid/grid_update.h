@@ -60,12 +60,14 @@ namespace mpm
     void
     velocities_after_forces(const double dt);
 
-    /// USF with contact: v_old into v_new, and where deformable fields
-    /// would press on each other at a force update with the forces
-    /// scattered so far (of the stress the step starts from), there they
-    /// do not part along the normal (see apply_contact()).
+    /// USF's strain-rate velocities, with deformable bodies in contact or
+    /// friction faces: v_old into v_new, and where deformable fields would
+    /// press on each other, or the stress push a node into a friction
+    /// face, at a force update with the forces scattered so far (of the
+    /// stress the step starts from), there they do not part along the
+    /// normal (see apply_contact(), GridFaces::apply()).
     void
-    strain_rate_velocities_with_contact(const double dt);
+    usf_strain_rate_velocities(const double dt);
 
     /// Boundary constraints on the nodal velocities in @p slot: contact,
     /// the grid's faces, the velocity region; @p dt > 0 at the force
@@ -106,6 +108,10 @@ namespace mpm
     apply_contact(const unsigned int slot,
                   const double       dt,
                   const bool         for_strain_rate);
+    /// usf_strain_rate_velocities()'s part at the nodes where deformable
+    /// fields meet.
+    void
+    strain_rate_velocities_with_contact(const double dt);
     /// The contact's work on a node's deformable fields at the force
     /// update (see there).
     double
