@@ -87,7 +87,7 @@ namespace mpm
     , stresses(parts)
     , usf_trial_forces(
         prm.scheme == UpdateScheme::USF &&
-        ((parts.contact && parts.contact->deformable_bodies_touch()) ||
+        (parts.contact != nullptr ||
          GridFaces<dim>::has_unilateral_face(parts.grid.parameters())))
     // Nodal masses are stored with the mass scaling (see
     // GridUpdate::velocities_from_momentum), and so is the guard's

@@ -168,17 +168,15 @@ namespace mpm
     // is not needed, and it would hold a rolling disk where its surface
     // lifts off.
     // @p hold_normal (MUSL's strain-rate velocities where the fields pressed
-    // on each other at the step's force update, see
-    // GridUpdate::apply_contact) has them stay together the same way.
-    bool keep_together = false;
+    // on each other or on a rigid body at the step's force update, see
+    // GridUpdate::apply_contact) has them stay together the same way, for
+    // the strain rate only.
+    bool keep_together = hold_normal;
     if (rigid < 0)
-      {
-        keep_together = hold_normal;
-        for (unsigned int f = 0; f < field_count; ++f)
-          keep_together =
-            keep_together || (takes_part(f) && node[f * stride] < min_mass);
-      }
-    bool pressed = false; // did deformable fields approach each other?
+      for (unsigned int f = 0; f < field_count; ++f)
+        keep_together =
+          keep_together || (takes_part(f) && node[f * stride] < min_mass);
+    bool pressed = false; // did a deformable field approach the others?
     for (unsigned int f = 0; f < field_count; ++f)
       {
         double *field = node + f * stride;
@@ -201,8 +199,8 @@ namespace mpm
         const double         approach = relative * n;
         if (!(approach > 0) && !keep_together)
           continue;
-        pressed                     = pressed || (rigid < 0 && approach > 0);
-        Tensor<1, dim>       change = -approach * n;
+        pressed                         = pressed || approach > 0;
+        Tensor<1, dim>       change     = -approach * n;
         const Tensor<1, dim> tangential = relative - approach * n;
         const double         slide      = tangential.norm();
         if (slide > 0 && approach > 0)

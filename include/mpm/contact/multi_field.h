@@ -114,8 +114,8 @@ namespace mpm
      * moves with the reference velocity along the normal, and so do all
      * deformable fields if @p hold_normal. The momentum the rigid fields
      * remove is added to @p rigid_impulse (one per rigid body, per unit
-     * dt: the caller scales it). Returns whether deformable fields
-     * approached each other here (were pressed together).
+     * dt: the caller scales it). Returns whether a deformable field
+     * approached the others or a rigid body here (was pressed on them).
      */
     bool
     correct_node(double                      *node,

@@ -30,8 +30,9 @@ namespace mpm
    *
    * It reads and writes the shared NodalState and owns only what lives
    * between the two velocity updates of one step: which nodes' fields
-   * pressed on each other at the force update (MUSL with deformable
-   * bodies in contact, see apply_contact()).
+   * pressed on each other or on a rigid body at the force update (MUSL
+   * with contact, see apply_contact()); the grid's faces keep theirs
+   * (GridFaces::apply()).
    */
   template <int dim>
   class GridUpdate
@@ -145,8 +146,8 @@ namespace mpm
     const bool         account_grid_work;
     const double       light_mass;
     const StepContext &context;
-    /// MUSL with deformable bodies in contact only: per owned node, did
-    /// their fields press on each other at this step's force update (see
+    /// MUSL with contact only: per owned node, did a field press on the
+    /// others or on a rigid body at this step's force update (see
     /// apply_contact())?
     std::vector<unsigned char> pressed_nodes;
   };
