@@ -4,7 +4,8 @@
 // The kinds of grid face ('Grid/boundary x min', ...): their names and
 // what the grid needs to know of them. What each does to the nodal
 // velocities is GridFaces (grid_faces.cc): a new kind is a value, a name
-// and a line in closes_the_grid here, and its rule there.
+// and a line in closes_the_grid (and is_rough, is_unilateral if they hold
+// for it) here, and its rule there.
 #include <mpm/options.h>
 
 namespace mpm
