@@ -73,10 +73,10 @@ namespace mpm
     const double              inf    = std::numeric_limits<double>::infinity();
     const std::vector<double> lowest = boxes(points);
     const std::vector<double> counts = histograms(points);
-    const std::vector<double> cells =
-      thickness > 0 ? columns_of_cells(points) : std::vector<double>();
-    const auto         &prm        = grid.parameters();
-    const unsigned int  per_column = 1 + 2 * horizontal.size();
+    const Columns             columns =
+      thickness > 0 ? columns_of_cells(points) : Columns();
+    const auto         &prm     = grid.parameters();
+    const unsigned int  n_edges = 2 * horizontal.size();
     std::vector<double> v;
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
@@ -117,23 +117,19 @@ namespace mpm
         if (thickness > 0)
           {
             // The columns at least T thick, or else the thickest.
-            const double *c        = cells.data() + per_column * n_columns * b;
-            double        thickest = -inf;
-            for (unsigned int k = 0; k < n_columns; ++k)
-              thickest = std::max(thickest, c[per_column * k]);
-            const double enough = std::min(thickness, thickest);
+            const double *thick = columns.thickness.data() + n_columns * b;
+            const double *edge = columns.edges.data() + n_edges * n_columns * b;
+            const double  enough =
+              std::min(thickness, *std::max_element(thick, thick + n_columns));
             for (unsigned int a = 0; a < horizontal.size(); ++a)
               {
                 double low = inf, high = -inf;
                 for (unsigned int k = 0; k < n_columns; ++k)
-                  {
-                    const double *column = c + per_column * k;
-                    if (column[0] > 0 && column[0] >= enough)
-                      {
-                        low  = std::min(low, column[1 + 2 * a]);
-                        high = std::max(high, -column[2 + 2 * a]);
-                      }
-                  }
+                  if (thick[k] > 0 && thick[k] >= enough)
+                    {
+                      low  = std::min(low, edge[n_edges * k + 2 * a]);
+                      high = std::max(high, -edge[n_edges * k + 2 * a + 1]);
+                    }
                 v.push_back(low);
                 v.push_back(high);
               }
@@ -227,14 +223,15 @@ namespace mpm
 
 
   template <int dim>
-  std::vector<double>
+  typename BodyExtents<dim>::Columns
   BodyExtents<dim>::columns_of_cells(const MaterialPoints<dim> &points) const
   {
-    const unsigned int  n_edges = 2 * horizontal.size();
-    std::vector<double> volume(n_columns * n_bodies, 0.);
-    std::vector<double> lowest(n_edges * n_columns * n_bodies,
-                               std::numeric_limits<double>::infinity());
-    const FieldLayout  &l = points.layout();
+    const unsigned int n_edges = 2 * horizontal.size();
+    Columns            c;
+    c.thickness.assign(n_columns * n_bodies, 0.);
+    c.edges.assign(n_edges * n_columns * n_bodies,
+                   std::numeric_limits<double>::infinity());
+    const FieldLayout &l = points.layout();
     for (const auto &p : points.handler())
       {
         const double      *q = p.get_properties().data();
@@ -242,8 +239,8 @@ namespace mpm
         const double       r = 0.5 * std::pow(q[l.volume], 1. / dim);
         const unsigned int k =
           n_columns * static_cast<unsigned int>(q[l.body]) + column_of(x);
-        volume[k] += q[l.volume];
-        double *edge = lowest.data() + n_edges * k;
+        c.thickness[k] += q[l.volume];
+        double *edge = c.edges.data() + n_edges * k;
         for (unsigned int a = 0; a < horizontal.size(); ++a)
           {
             edge[2 * a] = std::min(edge[2 * a], x[horizontal[a]] - r);
@@ -251,23 +248,21 @@ namespace mpm
               std::min(edge[2 * a + 1], -(x[horizontal[a]] + r));
           }
       }
+    MPI_Allreduce(MPI_IN_PLACE,
+                  c.thickness.data(),
+                  c.thickness.size(),
+                  MPI_DOUBLE,
+                  MPI_SUM,
+                  comm);
     MPI_Allreduce(
-      MPI_IN_PLACE, volume.data(), volume.size(), MPI_DOUBLE, MPI_SUM, comm);
-    MPI_Allreduce(
-      MPI_IN_PLACE, lowest.data(), lowest.size(), MPI_DOUBLE, MPI_MIN, comm);
-    // The thickness of a column: its volume over its cross-section, the
-    // cells' width across gravity (their area in 3D).
+      MPI_IN_PLACE, c.edges.data(), c.edges.size(), MPI_DOUBLE, MPI_MIN, comm);
+    // The volume over the column's cross-section, the cells' width across
+    // gravity (their area in 3D).
     double cross_section = 1;
     for (const unsigned int d : horizontal)
       cross_section *= grid.cell_size()[d];
-    std::vector<double> c((1 + n_edges) * n_columns * n_bodies);
-    for (unsigned int k = 0; k < volume.size(); ++k)
-      {
-        c[(1 + n_edges) * k] = volume[k] / cross_section;
-        std::copy(lowest.begin() + n_edges * k,
-                  lowest.begin() + n_edges * (k + 1),
-                  c.begin() + (1 + n_edges) * k + 1);
-      }
+    for (double &t : c.thickness)
+      t /= cross_section;
     return c;
   }
 

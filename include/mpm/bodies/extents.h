@@ -69,11 +69,15 @@ namespace mpm
     /// ranks, in bins of 1 / bins_per_cell of a cell.
     std::vector<double>
     histograms(const MaterialPoints<dim> &points) const;
-    /// Per body and column of cells across gravity: its thickness (the
-    /// points' volume over its cross-section), and per other axis the
-    /// lowest -edge and -(highest +edge) of the points' cubes, over all
-    /// ranks.
-    std::vector<double>
+    /// Per body and column of cells across gravity, over all ranks: its
+    /// thickness (the points' volume over its cross-section), and per
+    /// other axis the lowest -edge and -(highest +edge) of the points'
+    /// cubes.
+    struct Columns
+    {
+      std::vector<double> thickness, edges;
+    };
+    Columns
     columns_of_cells(const MaterialPoints<dim> &points) const;
     /// The column of cells across gravity that holds @p x.
     unsigned int

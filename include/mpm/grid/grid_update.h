@@ -109,10 +109,11 @@ namespace mpm
     apply_contact(const unsigned int slot,
                   const double       dt,
                   const bool         for_strain_rate);
-    /// usf_strain_rate_velocities()'s part at the nodes where deformable
-    /// fields meet.
-    void
-    strain_rate_velocities_with_contact(const double dt);
+    /// The owned nodes where the contact would correct a field that
+    /// moves into the others or a rigid body at the velocities in v_new
+    /// (usf_strain_rate_velocities()'s trial force update).
+    std::vector<unsigned int>
+    nodes_pressed_in_contact() const;
     /// The contact's work on a node's deformable fields at the force
     /// update (see there).
     double
