@@ -13,6 +13,7 @@ namespace mpm
     plastic_strain |= other.plastic_strain;
     opening |= other.opening;
     damage |= other.damage;
+    nonlocal_softening |= other.nonlocal_softening;
     surface_area |= other.surface_area;
     surface_offset |= other.surface_offset;
     point_load |= other.point_load;
@@ -58,6 +59,8 @@ namespace mpm
         l.damage         = add("damage", 1);
         l.damage_history = add("damage history", 1);
       }
+    if (requests.nonlocal_softening)
+      l.nonlocal_softening = add("nonlocal softening", 2);
     if (requests.surface_area)
       l.surface_area = add("surface area", dim);
     if (requests.surface_offset)

@@ -370,6 +370,28 @@ mpm_test(bad_dynamic_friction_angle PRM ../benchmarks/granular/bui2008.prm EXIT 
   ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/dynamic friction angle' = '15': allowed range is .19.8, 90.")
 mpm_test(footing_mohr_coulomb_mpi2 PRM ../benchmarks/plasticity/strip_footing.prm NP 2
   REFERENCE footing_mohr_coulomb.output RELTOL 1e-7 ${footing_mc})
+#    The same with nonlocal softening (over-nonlocal, l = 0.5 m, two
+#    cells): a reviewed history, and 2 ranks reproduce it, so the average's
+#    halo brings every neighbour from the other rank and the decision to
+#    average again is the same on both.
+set(footing_mc_nonlocal ${footing_mc}
+  -s "Bodies/Body 0/Mohr-Coulomb/nonlocal length=0.5")
+mpm_test(footing_mohr_coulomb_nonlocal PRM ../benchmarks/plasticity/strip_footing.prm
+  ${footing_mc_nonlocal})
+mpm_test(footing_mohr_coulomb_nonlocal_mpi2 PRM ../benchmarks/plasticity/strip_footing.prm NP 2
+  REFERENCE footing_mohr_coulomb_nonlocal.output RELTOL 1e-7 ${footing_mc_nonlocal})
+#    A nonlocal length needs softening, excludes the band's scaling, and
+#    its factor is at least 1.
+mpm_test(bad_nonlocal_softening_without_softening PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ${footing_mc} -s "Bodies/Body 0/Mohr-Coulomb/softening=none"
+  -s "Bodies/Body 0/Mohr-Coulomb/nonlocal length=0.5"
+  ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/nonlocal length' = '0.5': averages the softening's plastic strain: it needs softening = linear")
+mpm_test(bad_nonlocal_softening_with_band PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ${footing_mc_nonlocal} -s "Bodies/Body 0/Mohr-Coulomb/shear band thickness=0.5"
+  ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/nonlocal length' = '0.5': cannot be combined with a shear band thickness")
+mpm_test(bad_nonlocal_factor PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
+  ${footing_mc_nonlocal} -s "Bodies/Body 0/Mohr-Coulomb/nonlocal factor=0.5"
+  ERROR "parameter 'Bodies/Body 0/Mohr-Coulomb/nonlocal factor' = '0.5': must be >= 1")
 #    Bad values of the new parameters name the parameter.
 mpm_test(bad_velocity_region PRM ../benchmarks/plasticity/strip_footing.prm EXIT 1
   ARGS -s "Boundary conditions/Velocity region/velocity=0, fast"

@@ -46,6 +46,11 @@ namespace mpm
     unsigned int opening        = absent;
     unsigned int damage         = absent; ///< 1, damage d
     unsigned int damage_history = absent; ///< 1, its history variable kappa
+    /// 2, nonlocal softening only: the over-nonlocal shift of the plastic
+    /// strain the strength softens with, m (eqps_bar - eqps), and the
+    /// plastic strain eqps when it was averaged (a shift is kept until the
+    /// plastic strain has grown enough to average again).
+    unsigned int nonlocal_softening = absent;
     /// dim: the outward area vector N dA of the loaded surface a point of
     /// a pressure-loaded body carries (zero inside the body).
     unsigned int surface_area = absent;
@@ -99,6 +104,7 @@ namespace mpm
     bool plastic_strain            = false;
     bool opening                   = false;
     bool damage                    = false;
+    bool nonlocal_softening        = false;
     bool surface_area              = false;
     /// Offset and load moment: only a load on a face of a shape has one.
     bool         surface_offset         = false;

@@ -172,7 +172,24 @@ namespace mpm
           "residual plastic strain is given: the program scales the strain "
           "by this thickness over the cell size, so that the slip across "
           "the band at which the soil is residual, strain x thickness, is "
-          "the same on every grid (regularisation by the band's width).");
+          "the same on every grid (regularisation by the band's width; it "
+          "assumes the band a cell wide, which it is not on fine grids: "
+          "benchmarks/plasticity/README.md). 'local' with a nonlocal length.");
+        NonlocalLength::declare_parameters(
+          prm,
+          "with softening, the strength softens with an average of the plastic "
+          "strain over the body's points ('nonlocal factor'), so that a "
+          "shear band keeps a width set by l on every grid and the residual "
+          "plastic strain is the band's strain, not a cell's");
+        prm.declare_entry(
+          "nonlocal factor",
+          "2",
+          Patterns::Anything(),
+          "Softening with a nonlocal length: m >= 1; the strength softens "
+          "with max(0, (1 - m) eqps + m eqps_bar), eqps_bar the average "
+          "(over-nonlocal, Vermeer and Brinkgreve 1994). m = 1, the plain "
+          "average, does not keep a plastic band from narrowing to a cell "
+          "(Jirasek and Rolshoven 2003).");
         prm.declare_entry(
           "rate strengthening",
           "none",
@@ -243,6 +260,7 @@ namespace mpm
               prm, path, "residual plastic strain", 0, 1e300, true);
             residual_strain *= band_scale(prm, path, context.cell_size);
           }
+        parse_nonlocal_softening(prm, path);
         inertial    = parse_rate_strengthening(prm, path, context.density);
         peak_angles = angles_of(peak);
         const Strength end        = strength(residual_strain);
@@ -289,6 +307,35 @@ namespace mpm
                            "needs a grid (the strain is scaled by the cell "
                            "size); 'local' here");
         return thickness / cell_size;
+      }
+
+      /// The nonlocal length and factor of softening; a length needs
+      /// softening and excludes the band's scaling, which assumes the band a
+      /// cell wide.
+      void
+      parse_nonlocal_softening(const ParameterHandler &prm,
+                               const std::string      &path)
+      {
+        NonlocalLength length;
+        length.parse(prm, path);
+        if (!length.enabled())
+          return;
+        const std::string value = prm.get("nonlocal length");
+        if (!softening)
+          throw InputError(path + "/nonlocal length",
+                           value,
+                           "averages the softening's plastic strain: it "
+                           "needs softening = linear (or 0)");
+        if (prm.get("shear band thickness") != "local")
+          throw InputError(path + "/nonlocal length",
+                           value,
+                           "cannot be combined with a shear band thickness, "
+                           "which scales the strain for a band a cell wide: "
+                           "set shear band thickness = local (or nonlocal "
+                           "length = 0)");
+        nonlocal = length;
+        over_nonlocal =
+          Parse::bounded_double(prm, path, "nonlocal factor", 1, 1e300);
       }
 
       /// Inertial rate strengthening's constants; off unless 'inertial'.
@@ -654,6 +701,31 @@ namespace mpm
         return true;
       }
 
+      /// The nonlocal length of softening (0: local).
+      const NonlocalLength &
+      softening_average() const
+      {
+        return nonlocal;
+      }
+
+      /// The over-nonlocal shift of the plastic strain that softens a
+      /// point of plastic strain @p eqps whose neighbourhood averages
+      /// @p average: the strength softens with (1 - m) eqps + m average =
+      /// eqps + m (average - eqps), so a point softens less than its
+      /// neighbours where it leads them, which spreads the band.
+      double
+      nonlocal_shift(const double eqps, const double average) const
+      {
+        return over_nonlocal * (average - eqps);
+      }
+
+      /// The plastic strain over which the strength softens.
+      double
+      softening_strain() const
+      {
+        return residual_strain;
+      }
+
       double
       yield_function(const std::array<double, 3> &tau, const double eqps) const
       {
@@ -1013,6 +1085,8 @@ namespace mpm
       double                    cutoff;
       bool                      softening;
       double                    residual_strain = 1;
+      NonlocalLength            nonlocal;
+      double                    over_nonlocal = 1;
       InertialFriction          inertial;
     };
   } // namespace LogStrain

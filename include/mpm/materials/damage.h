@@ -22,6 +22,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <mpm/materials/nonlocal_average.h>
+
 #include <array>
 #include <cmath>
 #include <string>
@@ -39,12 +41,6 @@ namespace mpm
       instantaneous,
       delayed
     };
-    enum class Weight
-    {
-      bell,
-      gauss
-    };
-
     /// Declare subsection 'Damage' inside the current (model) subsection.
     static void
     declare_parameters(dealii::ParameterHandler &prm);
@@ -65,7 +61,7 @@ namespace mpm
     bool
     is_nonlocal() const
     {
-      return enabled() && length > 0;
+      return enabled() && nonlocal.enabled();
     }
 
     void
@@ -109,13 +105,12 @@ namespace mpm
           t *= 1. - d;
     }
 
-    Evolution evolution;
-    double    youngs_modulus;
-    double    initiation_strain, failure_strain;
-    double    delay_time;
-    bool      tension_only;
-    double    length; ///< 0: local
-    Weight    weight;
+    Evolution      evolution;
+    double         youngs_modulus;
+    double         initiation_strain, failure_strain;
+    double         delay_time;
+    bool           tension_only;
+    NonlocalLength nonlocal;
   };
 } // namespace mpm
 

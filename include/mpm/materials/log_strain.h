@@ -292,6 +292,21 @@ namespace mpm
     };
 
 
+    /// A flow whose softening may follow a nonlocal average of the plastic
+    /// strain: it has softening_average() (its NonlocalLength),
+    /// nonlocal_shift(eqps, average) and softening_strain().
+    template <typename Flow, typename = void>
+    struct HasNonlocalSoftening : std::false_type
+    {
+    };
+    template <typename Flow>
+    struct HasNonlocalSoftening<Flow,
+                                std::void_t<decltype(&Flow::softening_average)>>
+      : std::true_type
+    {
+    };
+
+
     /**
      * A model in the log-strain framework. @p Flow corrects the elastic
      * trial state: a plastic flow returns it to its admissible set, a
@@ -320,6 +335,13 @@ namespace mpm
      *     // Optional, plastic: true if the admissible set holds zero
      *     // stress at its tip (no cohesion, or a tension cutoff of 0).
      *     bool can_part() const;
+     *     // Optional, plastic with softening: its nonlocal length; the
+     *     // shift from a point's plastic strain to the one it softens with
+     *     // (return_map's eqps), given the average over its neighbours;
+     *     // the plastic strain over which it softens.
+     *     const NonlocalLength &softening_average() const;
+     *     double nonlocal_shift(double eqps, double average) const;
+     *     double softening_strain() const;
      *   };
      *
      * A material without cohesion that is stretched returns to zero
@@ -373,6 +395,8 @@ namespace mpm
         if constexpr (CanPart<Flow>::value)
           requests.opening = requests.opening || flow.can_part();
         damage.request_fields(requests);
+        requests.nonlocal_softening =
+          requests.nonlocal_softening || softening_nonlocal.enabled();
       }
 
       bool
@@ -411,6 +435,8 @@ namespace mpm
           }
         if (layout.opening != FieldLayout::absent)
           p[layout.opening] = 0.;
+        if (layout.nonlocal_softening != FieldLayout::absent)
+          p[layout.nonlocal_softening] = p[layout.nonlocal_softening + 1] = 0.;
         if (damage.enabled())
           {
             if (damage.equivalent_strain(s.values) / J >
@@ -427,7 +453,9 @@ namespace mpm
       }
 
       /// Nonlocal damage needs every point's equivalent strain before any
-      /// point's damage: two passes. Otherwise one pass of update_point.
+      /// point's damage: two passes; nonlocal softening, every point's
+      /// plastic strain before any return. Otherwise one pass of
+      /// update_point.
       void
       update_stresses(Particles::ParticleHandler<dim> &particles,
                       const FieldLayout               &layout,
@@ -435,17 +463,22 @@ namespace mpm
                       const double                     dt,
                       const MPI_Comm                   comm) const override
       {
-        if (damage.is_nonlocal())
-          update_with_nonlocal_damage(particles, layout, body, dt, comm);
+        if (damage.is_nonlocal() || softening_nonlocal.enabled())
+          update_nonlocal(particles, layout, body, dt, comm);
         else
           PointwiseMaterial<dim, Model<dim, Flow>>::update_stresses(
             particles, layout, body, dt, comm);
       }
 
+      /// The step of one point; @p softening is the plastic strain its
+      /// strength softens with, or local_softening for its own.
       inline void
-      update_point(double *p, const FieldLayout &layout, const double dt) const
+      update_point(double            *p,
+                   const FieldLayout &layout,
+                   const double       dt,
+                   const double       softening = local_softening) const
       {
-        auto [sigma, s] = undamaged_update(p, layout, dt);
+        auto [sigma, s] = undamaged_update(p, layout, dt, softening);
         if (damage.enabled())
           apply_damage(p, layout, sigma, damage.equivalent_strain(sigma), dt);
         Fields::store(Fields::in_plane<dim>(compose<dim>(sigma, s)),
@@ -484,7 +517,8 @@ namespace mpm
       inline std::pair<std::array<double, 3>, Spectral>
       undamaged_update(double            *p,
                        const FieldLayout &layout,
-                       const double       dt) const
+                       const double       dt,
+                       const double       softening) const
       {
         double    *be_data = p + layout.elastic_left_cauchy_green;
         const auto L       = Fields::tensor<dim>(p + layout.velocity_gradient);
@@ -501,7 +535,9 @@ namespace mpm
           {
             const std::array<double, 3> tau_trial = tau;
             double                     &eqps      = p[layout.plastic_strain];
-            if (flow.return_map(tau, eqps, dt))
+            const double                state =
+              softening == local_softening ? eqps : softening;
+            if (flow.return_map(tau, state, dt))
               {
                 corrected = true;
                 eqps += elasticity.equivalent_plastic_strain(tau_trial, tau);
@@ -588,14 +624,104 @@ namespace mpm
         damage.degrade(sigma, p[layout.damage]);
       }
 
+      /// update_point's marker for a point that softens with its own
+      /// plastic strain.
+      static constexpr double local_softening = -1;
+
+      /// How far a point's plastic strain may grow, as a share of the
+      /// softening's range, before the body's average is taken again. The
+      /// average costs a sum over some hundred neighbours per point; taken
+      /// every step it tripled the cost of a softening specimen
+      /// (benchmarks/plasticity/README.md), while a point's plastic strain
+      /// grows by 1e-4 of the range per step there.
+      static constexpr double refresh_growth = 0.01;
+
+      /// Average the plastic strain of body @p body again if some point's
+      /// has grown by refresh_growth of the softening's range since the
+      /// last average (collective over @p comm): store each point's
+      /// over-nonlocal shift and the plastic strain it was made at.
       void
-      update_with_nonlocal_damage(Particles::ParticleHandler<dim> &particles,
-                                  const FieldLayout               &layout,
-                                  const unsigned int               body,
-                                  const double                     dt,
-                                  const MPI_Comm                   comm) const
+      refresh_softening_shifts(Particles::ParticleHandler<dim> &particles,
+                               const FieldLayout               &layout,
+                               const unsigned int               body,
+                               const MPI_Comm                   comm) const
       {
-        const double            id = body;
+        if constexpr (HasNonlocalSoftening<Flow>::value)
+          {
+            const double id        = body;
+            const double allowed   = refresh_growth * flow.softening_strain();
+            const unsigned int k   = layout.nonlocal_softening;
+            bool               due = false;
+            for (const auto &particle : particles)
+              {
+                const double *p = particle.get_properties().data();
+                due             = due || (p[layout.body] == id &&
+                              p[layout.plastic_strain] - p[k + 1] > allowed);
+              }
+            if (Utilities::MPI::max(due ? 1 : 0, comm) == 0)
+              return;
+            std::vector<Point<dim>> x;
+            std::vector<double>     volume, eqps;
+            for (const auto &particle : particles)
+              {
+                const double *p = particle.get_properties().data();
+                if (p[layout.body] == id)
+                  {
+                    x.push_back(particle.get_location());
+                    volume.push_back(p[layout.volume]);
+                    eqps.push_back(p[layout.plastic_strain]);
+                  }
+              }
+            // A plastic strain is >= 0: where no neighbour has yielded the
+            // average is 0 without the sum.
+            const std::vector<double> average = softening_nonlocal.average(
+              x, volume, eqps, std::vector<double>(x.size(), 0.), comm);
+            unsigned int i = 0;
+            for (auto &particle : particles)
+              {
+                double *p = particle.get_properties().data();
+                if (p[layout.body] == id)
+                  {
+                    p[k]     = flow.nonlocal_shift(eqps[i], average[i]);
+                    p[k + 1] = eqps[i];
+                    ++i;
+                  }
+              }
+          }
+      }
+
+      /// The plastic strain point @p p softens with: its own, shifted by
+      /// its stored over-nonlocal shift (>= 0: the peak below), or
+      /// local_softening without a nonlocal length.
+      double
+      softening_of(const double *p, const FieldLayout &layout) const
+      {
+        if (!softening_nonlocal.enabled())
+          return local_softening;
+        return std::max(p[layout.plastic_strain] + p[layout.nonlocal_softening],
+                        0.);
+      }
+
+      void
+      update_nonlocal(Particles::ParticleHandler<dim> &particles,
+                      const FieldLayout               &layout,
+                      const unsigned int               body,
+                      const double                     dt,
+                      const MPI_Comm                   comm) const
+      {
+        if (softening_nonlocal.enabled())
+          refresh_softening_shifts(particles, layout, body, comm);
+        const double id = body;
+        if (!damage.is_nonlocal())
+          {
+            for (auto &particle : particles)
+              {
+                double *p = particle.get_properties().data();
+                if (p[layout.body] == id)
+                  update_point(p, layout, dt, softening_of(p, layout));
+              }
+            return;
+          }
         std::vector<Point<dim>> x;
         std::vector<double>     volume, chi, kappa;
         for (auto &particle : particles)
@@ -603,7 +729,9 @@ namespace mpm
             double *p = particle.get_properties().data();
             if (p[layout.body] == id)
               {
-                const auto sigma = undamaged_update(p, layout, dt).first;
+                const auto sigma =
+                  undamaged_update(p, layout, dt, softening_of(p, layout))
+                    .first;
                 x.push_back(particle.get_location());
                 volume.push_back(p[layout.volume]);
                 chi.push_back(damage.equivalent_strain(sigma));
@@ -644,6 +772,17 @@ namespace mpm
           return Flow(prm, path, constants);
       }
 
+      /// The nonlocal length of @p flow's softening (0: local, or a flow
+      /// without softening).
+      static NonlocalLength
+      softening_length(const Flow &flow)
+      {
+        if constexpr (HasNonlocalSoftening<Flow>::value)
+          return flow.softening_average();
+        else
+          return {};
+      }
+
       /// The spectral decomposition of a point's stored b_e.
       static Spectral
       stored_b_e(const double *p, const FieldLayout &layout)
@@ -655,7 +794,8 @@ namespace mpm
       const PrincipalElasticity  elasticity;
       const Flow                 flow;
       const DamageLaw            damage;
-      const NonlocalAverage<dim> nonlocal{damage};
+      const NonlocalAverage<dim> nonlocal{damage.nonlocal};
+      const NonlocalAverage<dim> softening_nonlocal{softening_length(flow)};
       const double               reference_density;
     };
 

@@ -2,15 +2,48 @@
 #define mpm_materials_nonlocal_average_h
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
-#include <mpm/materials/damage.h>
-
+#include <string>
 #include <vector>
 
 namespace mpm
 {
   using namespace dealii;
+
+  /**
+   * The length and weight of a nonlocal average, declared and read in one
+   * place for every model option that averages a point value over its
+   * neighbours (damage's driving strain, softening's plastic strain).
+   */
+  struct NonlocalLength
+  {
+    enum class Weight
+    {
+      bell,
+      gauss
+    };
+
+    double length = 0; ///< 0: local
+    Weight weight = Weight::bell;
+
+    /// Declare 'nonlocal length' and 'nonlocal weight' in the current
+    /// subsection; @p averaged says what is averaged and what for.
+    static void
+    declare_parameters(ParameterHandler &prm, const std::string &averaged);
+
+    /// Read them from the current subsection; @p path names it in errors.
+    void
+    parse(const ParameterHandler &prm, const std::string &path);
+
+    bool
+    enabled() const
+    {
+      return length > 0;
+    }
+  };
+
 
   /**
    * The weighted average of a point value over the points of one body
@@ -30,7 +63,7 @@ namespace mpm
   class NonlocalAverage
   {
   public:
-    explicit NonlocalAverage(const DamageLaw &law);
+    explicit NonlocalAverage(const NonlocalLength &length);
 
     /**
      * v_bar at the points @p x (this rank's points of the body) with
@@ -38,7 +71,8 @@ namespace mpm
      * Where it cannot exceed @p floor (no value in reach is above it) the
      * sum is skipped and floor returned: damage only grows where the
      * average exceeds the history kappa, and a body in compression
-     * (chi = 0) costs one pass.
+     * (chi = 0) costs one pass; a plastic strain averages to 0 where no
+     * neighbour has yielded.
      */
     std::vector<double>
     average(const std::vector<Point<dim>> &x,
@@ -47,14 +81,21 @@ namespace mpm
             const std::vector<double>     &floor,
             const MPI_Comm                 comm) const;
 
+    /// False for a length of 0 (local: nothing to average).
+    bool
+    enabled() const
+    {
+      return length > 0;
+    }
+
     /// The weight at squared distance @p r2 (0 beyond the support).
     double
     weight(const double r2) const;
 
   private:
-    double            length;
-    double            support;
-    DamageLaw::Weight kind;
+    double                 length;
+    double                 support;
+    NonlocalLength::Weight kind;
   };
 } // namespace mpm
 
