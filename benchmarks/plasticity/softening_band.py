@@ -95,7 +95,7 @@ def main():
     p.add_argument("--softenings", default="local,band,nonlocal",
                    help="which of local, band, nonlocal to run")
     p.add_argument("--band", type=float, default=0.1)
-    p.add_argument("--nonlocal-length", type=float, default=0.1)
+    p.add_argument("--nonlocal-length", type=float, default=0.2)
     p.add_argument("--nonlocal-factor", type=float, default=2)
     p.add_argument("--nonlocal-weight", default="bell")
     p.add_argument("-s", "--set", action="append", default=[],

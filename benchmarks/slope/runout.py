@@ -35,7 +35,7 @@ from vtu_points import read_field, read_points  # noqa: E402
 
 
 def run(a, cells, extra, out):
-    command = [a.exe, os.path.join(HERE, "runout.prm"),
+    command = [a.exe, a.prm,
                "-s", "Output/directory=" + out,
                "-s", "Output/progress interval=1e9",
                "-s", "Grid/cells=" + cells] + extra
@@ -105,6 +105,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("--exe", required=True)
+    p.add_argument("--prm", default=os.path.join(HERE, "runout.prm"),
+                   help="the scene (a variant of runout.prm)")
     p.add_argument("--ladder", default="30,6;60,12;120,24")
     p.add_argument("--scheme", action="append", default=[],
                    help="NAME:path=value[:path=value...] (repeatable); "
