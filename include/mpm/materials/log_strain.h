@@ -640,6 +640,13 @@ namespace mpm
       /// has grown by refresh_growth of the softening's range since the
       /// last average (collective over @p comm): store each point's
       /// over-nonlocal shift and the plastic strain it was made at.
+      ///
+      /// What is averaged is the plastic strain up to the softening's end
+      /// (softening_part): beyond it the strength no longer changes, and a
+      /// point sheared far past it (plastic strains of 10 in a slide's
+      /// base) would otherwise lead its neighbours by so much that the
+      /// over-nonlocal mix put it back at its peak strength, and keep the
+      /// average being taken while the debris flows.
       void
       refresh_softening_shifts(Particles::ParticleHandler<dim> &particles,
                                const FieldLayout               &layout,
@@ -655,8 +662,10 @@ namespace mpm
             for (const auto &particle : particles)
               {
                 const double *p = particle.get_properties().data();
-                due             = due || (p[layout.body] == id &&
-                              p[layout.plastic_strain] - p[k + 1] > allowed);
+                due =
+                  due || (p[layout.body] == id &&
+                          softening_part(p[layout.plastic_strain]) - p[k + 1] >
+                            allowed);
               }
             if (Utilities::MPI::max(due ? 1 : 0, comm) == 0)
               return;
@@ -669,7 +678,7 @@ namespace mpm
                   {
                     x.push_back(particle.get_location());
                     volume.push_back(p[layout.volume]);
-                    eqps.push_back(p[layout.plastic_strain]);
+                    eqps.push_back(softening_part(p[layout.plastic_strain]));
                   }
               }
             // A plastic strain is >= 0: where no neighbour has yielded the
@@ -690,15 +699,26 @@ namespace mpm
           }
       }
 
-      /// The plastic strain point @p p softens with: its own, shifted by
-      /// its stored over-nonlocal shift (>= 0: the peak below), or
-      /// local_softening without a nonlocal length.
+      /// A plastic strain up to the end of the flow's softening range.
+      double
+      softening_part(const double eqps) const
+      {
+        if constexpr (HasNonlocalSoftening<Flow>::value)
+          return std::min(eqps, flow.softening_strain());
+        else
+          return eqps;
+      }
+
+      /// The plastic strain point @p p softens with: its own (up to the
+      /// softening's end), shifted by its stored over-nonlocal shift (>= 0:
+      /// the peak below), or local_softening without a nonlocal length.
       double
       softening_of(const double *p, const FieldLayout &layout) const
       {
         if (!softening_nonlocal.enabled())
           return local_softening;
-        return std::max(p[layout.plastic_strain] + p[layout.nonlocal_softening],
+        return std::max(softening_part(p[layout.plastic_strain]) +
+                          p[layout.nonlocal_softening],
                         0.);
       }
 
