@@ -53,7 +53,12 @@ CASES = [
      stage_1([MC + "cohesion = 3e3", MC + "softening = linear",
               MC + "residual cohesion = 0", MC + "residual friction angle = 12",
               MC + "residual plastic strain = 0.05"])),
-    ("MC softening c and phi band 1 m (runout.prm)", []),
+    ("MC softening c and phi band 1 m",
+     stage_1([MC + "cohesion = 3e3", MC + "softening = linear",
+              MC + "residual cohesion = 0", MC + "residual friction angle = 12",
+              MC + "residual plastic strain = 0.05",
+              MC + "shear band thickness = 1"])),
+    ("MC softening c and phi nonlocal 1 m (runout.prm)", []),
     ("DP plane strain",
      material("Drucker-Prager", [("cohesion", "1e4"), ("friction angle", "20"),
                                  ("cone", "plane strain")]) +
