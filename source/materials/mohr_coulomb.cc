@@ -186,10 +186,11 @@ namespace mpm
           "2",
           Patterns::Anything(),
           "Softening with a nonlocal length: m >= 1; the strength softens "
-          "with max(0, (1 - m) eqps + m eqps_bar), eqps_bar the average "
-          "(over-nonlocal, Vermeer and Brinkgreve 1994). m = 1, the plain "
-          "average, does not keep a plastic band from narrowing to a cell "
-          "(Jirasek and Rolshoven 2003).");
+          "with max(0, (1 - m) eqps + m eqps_bar), eqps_bar the average, "
+          "both counted up to the residual plastic strain (over-nonlocal, "
+          "Vermeer and Brinkgreve 1994). m = 1, the plain average, does not "
+          "keep a plastic band from narrowing to a cell (Jirasek and "
+          "Rolshoven 2003).");
         prm.declare_entry(
           "rate strengthening",
           "none",
@@ -325,7 +326,8 @@ namespace mpm
           throw InputError(path + "/nonlocal length",
                            value,
                            "averages the softening's plastic strain: it "
-                           "needs softening = linear (or 0)");
+                           "needs softening = linear (or a nonlocal length "
+                           "of 0)");
         if (prm.get("shear band thickness") != "local")
           throw InputError(path + "/nonlocal length",
                            value,

@@ -631,9 +631,9 @@ namespace mpm
       /// How far a point's plastic strain may grow, as a share of the
       /// softening's range, before the body's average is taken again. The
       /// average costs a sum over some hundred neighbours per point; taken
-      /// every step it tripled the cost of a softening specimen
-      /// (benchmarks/plasticity/README.md), while a point's plastic strain
-      /// grows by 1e-4 of the range per step there.
+      /// every step it cost 3.5 times the local run of a softening
+      /// specimen, for a slip the same to 1 % (benchmarks/plasticity/
+      /// README.md).
       static constexpr double refresh_growth = 0.01;
 
       /// Average the plastic strain of body @p body again if some point's
