@@ -339,10 +339,12 @@ namespace mpm
     if (dt > 0)
       contact->add_rigid_impulses(impulse);
     // The rigid body's reaction works at its velocity (an upper bound:
-    // friction's share is dissipated), at both velocity updates.
+    // friction's share is dissipated), at the force update only, as the
+    // velocity region's (see VelocityRegion::enforce()).
     double rigid_work = 0;
-    for (unsigned int r = 0; r < impulse.size(); ++r)
-      rigid_work += impulse[r] * contact->rigid_velocity_of(r);
+    if (dt > 0)
+      for (unsigned int r = 0; r < impulse.size(); ++r)
+        rigid_work += impulse[r] * contact->rigid_velocity_of(r);
     loads.add_work(rigid_work);
     // What the contact with rigid bodies took from the deformable fields
     // beyond what the rigid bodies did on them (external work) is its own:
