@@ -32,7 +32,8 @@ TRANSFERS = {
     "scene": [],
     "APIC": ["-s", "Simulation/transfer=APIC"],
     "relaxation": ["-s", "Simulation/FLIP fraction=1",
-                   "-s", "Simulation/PIC relaxation time=1"]}
+                   "-s", "Simulation/PIC relaxation time=1"],
+    "FLIP": ["-s", "Simulation/FLIP fraction=1"]}
 
 
 def rigid_footing(per_half_width):
@@ -86,7 +87,9 @@ def main():
     parser.add_argument("--transfers", default="scene",
                         help="comma-separated: scene (FLIP 0.95), APIC, "
                              "relaxation (FLIP with a PIC relaxation time "
-                             "of 1 s); with several, --check also asks "
+                             "of 1 s), FLIP (pure FLIP: no dissipation of "
+                             "its own, so the energy residual is the "
+                             "accounting's); with several, --check also asks "
                              "their peaks to agree within --max-difference")
     parser.add_argument("--max-residual", type=float, default=None,
                         help="turn the energy residual on, and check it at "

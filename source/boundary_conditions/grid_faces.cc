@@ -40,6 +40,7 @@ namespace mpm
     friction_nodes.clear();
     pressed_faces.clear();
     absorbing_nodes.clear();
+    closed_face_nodes.clear();
     const GridParameters<dim> &prm = grid.parameters();
     const Tensor<1, dim>      &h   = grid.cell_size();
     // An owned node lies on face f (x min, x max, y min, ...) if its index
@@ -47,12 +48,14 @@ namespace mpm
     for (unsigned int i = 0; i < grid.n_locally_owned_nodes(); ++i)
       {
         const auto   c    = grid.owned_node_coordinates(i);
-        unsigned int mask = 0, friction_faces = 0;
+        unsigned int mask = 0, friction_faces = 0, closed_axes = 0;
         for (unsigned int f = 0; f < 2 * dim; ++f)
           {
             const unsigned int d = f / 2;
             if (c[d] != (f % 2 == 0 ? 0 : prm.n_cells[d]))
               continue;
+            if (closes_the_grid(prm.boundary[f]))
+              closed_axes |= 1u << d;
             switch (prm.boundary[f])
               {
                 case BoundaryType::fixed:
@@ -84,7 +87,28 @@ namespace mpm
           constrained_nodes.emplace_back(i, mask);
         if (friction_faces != 0)
           friction_nodes.emplace_back(i, friction_faces);
+        if (closed_axes != 0)
+          closed_face_nodes.emplace_back(i, closed_axes);
       }
+  }
+
+
+  template <int dim>
+  void
+  GridFaces<dim>::keep_contact_normals_in_faces(
+    double            *data,
+    const unsigned int n_fields,
+    const unsigned int per_field) const
+  {
+    for (const auto &[i, axes] : closed_face_nodes)
+      for (unsigned int f = 0; f < n_fields; ++f)
+        {
+          double *gradient =
+            data + per_field * NodalLayout<dim>::slot_of(i, f, n_fields);
+          for (unsigned int d = 0; d < dim; ++d)
+            if (axes & (1u << d))
+              gradient[d] = 0;
+        }
   }
 
 

@@ -306,7 +306,12 @@ namespace mpm
                                  const double       dt,
                                  const bool         for_strain_rate)
   {
-    double       *u    = nodes.velocities.get_values();
+    double *u = nodes.velocities.get_values();
+    // Each call after a transfer again: the projection does not change
+    // what it has projected.
+    faces.keep_contact_normals_in_faces(nodes.contact_data.get_values(),
+                                        nodes.n_fields,
+                                        MultiFieldContact<dim>::data_per_field);
     const double *data = nodes.contact_data.get_values();
     contact->set_time(context.t);
     std::vector<Tensor<1, dim>> impulse(contact->rigid_bodies().size());
