@@ -389,7 +389,8 @@ namespace mpm
       "each other axis, columns body<b>_<axis>_deposit_min and _max, the "
       "furthest edges of a body where it is at least this thick along "
       "gravity, in m (in each column of grid cells, the volume of the "
-      "body's points over the column's width, gaps closed; the edge is "
+      "body's points over the column's width, gaps closed, without the "
+      "volume a cohesionless material gained by parting; the edge is "
       "that of the outermost point of such a column, each point a cube of "
       "its volume). 0: none.");
     prm.declare_entry("progress interval",

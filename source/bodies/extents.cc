@@ -239,7 +239,9 @@ namespace mpm
         const double       r = 0.5 * std::pow(q[l.volume], 1. / dim);
         const unsigned int k =
           n_columns * static_cast<unsigned int>(q[l.body]) + column_of(x);
-        c.thickness[k] += q[l.volume];
+        c.thickness[k] += l.opening == FieldLayout::absent
+                            ? q[l.volume]
+                            : q[l.volume] * std::exp(-q[l.opening]);
         double *edge = c.edges.data() + n_edges * k;
         for (unsigned int a = 0; a < horizontal.size(); ++a)
           {

@@ -263,10 +263,16 @@ namespace mpm
                 dt,
                 account_grid_work && dt > 0 ? &work : nullptr,
                 for_strain_rate);
+    // The region's work, as the rigid bodies' (apply_contact()), not at
+    // MUSL's strain-rate velocities.
     if (velocity_region.enabled())
       for (unsigned int f = 0; f < nodes.n_fields; ++f)
-        loads.add_work(velocity_region.enforce(
-          u + n_velocities * f, nodes.n_fields * n_velocities, slot, dt));
+        {
+          const double w = velocity_region.enforce(
+            u + n_velocities * f, nodes.n_fields * n_velocities, slot, dt);
+          if (!for_strain_rate)
+            loads.add_work(w);
+        }
   }
 
 
@@ -344,10 +350,11 @@ namespace mpm
     if (dt > 0)
       contact->add_rigid_impulses(impulse);
     // The rigid body's reaction works at its velocity (an upper bound:
-    // friction's share is dissipated), at the force update only, as the
-    // velocity region's (see VelocityRegion::enforce()).
+    // friction's share is dissipated), at both velocity updates (see
+    // VelocityRegion::enforce()), but not at MUSL's strain-rate
+    // velocities, whose corrections move no point.
     double rigid_work = 0;
-    if (dt > 0)
+    if (!for_strain_rate)
       for (unsigned int r = 0; r < impulse.size(); ++r)
         rigid_work += impulse[r] * contact->rigid_velocity_of(r);
     loads.add_work(rigid_work);

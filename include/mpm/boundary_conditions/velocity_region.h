@@ -74,9 +74,9 @@ namespace mpm
      * array @p u (stride @p stride, mass at offset 0, velocity at
      * @p slot). If @p dt > 0 the change is the region's force over dt and
      * is added to the impulse. Returned is the work the region did,
-     * m (v_region - v) . v_region summed over its nodes at the force update
-     * (dt > 0; a constraint's force works at the velocity it imposes; a
-     * fixed region does none), and 0 at the other updates.
+     * m (v_region - v) . v_region summed over its nodes, at either update
+     * (a constraint's force works at the velocity it imposes; a fixed
+     * region does none).
      */
     double
     enforce(double            *u,
