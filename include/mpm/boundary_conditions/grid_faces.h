@@ -86,8 +86,8 @@ namespace mpm
      * and a mirrored body has no gradient across it. Left in, a rigid
      * footing's normal at its corner on the symmetry face tilted, the
      * contact held the soil there only in part, and the point trapped
-     * under the corner was pumped to 8.6 m/s (pure FLIP, energy residual
-     * +0.33 of the work at t = 1 s; benchmarks/plasticity/strip_footing).
+     * under the corner was pumped to 8.6 m/s (pure FLIP; MUSL stopped on
+     * the energy guard at t = 0.4 s; benchmarks/plasticity/README.md).
      */
     void
     keep_contact_normals_in_faces(double            *data,
