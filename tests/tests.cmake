@@ -333,8 +333,9 @@ if(NOT CMAKE_BUILD_TYPE STREQUAL "Debug")
   # face (GridFaces::keep_contact_normals_in_faces): without it a soil
   # point trapped under the corner was pumped to 8.6 m/s, the residual
   # read -34 % with USL and MUSL stopped on the energy guard at t = 0.4 s.
-  # MUSL's strain-rate velocities do no work (a rigid footing with FLIP
-  # 0.95 read -59 % at t = 0.7 s when they did; now -3.6 % at 2.6 s).
+  # MUSL's strain-rate velocities do no work (counted there, the rigid
+  # footing with pure FLIP and MUSL read -18.4 % at t = 2.6 s; with FLIP
+  # 0.95 -59 % at 0.7 s before the normal's fix).
   foreach(scheme USL MUSL)
     if(scheme STREQUAL "USL")
       set(bound 0.1)

@@ -141,8 +141,9 @@ namespace mpm
               // The work counts at both velocity updates (the first, from
               // the momenta, sets a body at rest moving: without it a
               // region started at 100 m/s tripped the energy guard in its
-              // first step, tests velocity_region_fast); the force meter
-              // only at the force update. With FLIP the first update's
+              // first step, tests velocity_region_fast; the caller leaves
+              // out MUSL's strain-rate velocities); the force meter only
+              // at the force update. With FLIP the first update's
               // correction at the region's fringe recurs at every step
               // (the points keep the increment, not the corrected
               // velocity), so the count is high there: the footing's

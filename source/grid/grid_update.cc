@@ -249,8 +249,15 @@ namespace mpm
                                      const double       dt,
                                      const bool         for_strain_rate)
   {
+    // The work of prescribed motion (rigid bodies, the velocity region)
+    // counts at both velocity updates, where the first sets a body at
+    // rest moving (see VelocityRegion::enforce()), but not at MUSL's
+    // strain-rate velocities, whose corrections move no point: counted
+    // there, a rigid footing pushed with MUSL and pure FLIP read an energy
+    // residual of -18 % of the work at t = 2.6 s, -10 % without.
+    double prescribed_work = 0;
     if (contact)
-      apply_contact(slot, dt, for_strain_rate);
+      prescribed_work += apply_contact(slot, dt, for_strain_rate);
     // Grid faces and the velocity region act on every field alike.
     double *u = nodes.velocities.get_values();
     // Only the force update's corrections are the faces' work: after a
@@ -263,16 +270,12 @@ namespace mpm
                 dt,
                 account_grid_work && dt > 0 ? &work : nullptr,
                 for_strain_rate);
-    // The region's work, as the rigid bodies' (apply_contact()), not at
-    // MUSL's strain-rate velocities.
     if (velocity_region.enabled())
       for (unsigned int f = 0; f < nodes.n_fields; ++f)
-        {
-          const double w = velocity_region.enforce(
-            u + n_velocities * f, nodes.n_fields * n_velocities, slot, dt);
-          if (!for_strain_rate)
-            loads.add_work(w);
-        }
+        prescribed_work += velocity_region.enforce(
+          u + n_velocities * f, nodes.n_fields * n_velocities, slot, dt);
+    if (!for_strain_rate)
+      loads.add_work(prescribed_work);
   }
 
 
@@ -307,7 +310,7 @@ namespace mpm
    * repartition (load balance, between steps) would lose.
    */
   template <int dim>
-  void
+  double
   GridUpdate<dim>::apply_contact(const unsigned int slot,
                                  const double       dt,
                                  const bool         for_strain_rate)
@@ -350,19 +353,16 @@ namespace mpm
     if (dt > 0)
       contact->add_rigid_impulses(impulse);
     // The rigid body's reaction works at its velocity (an upper bound:
-    // friction's share is dissipated), at both velocity updates (see
-    // VelocityRegion::enforce()), but not at MUSL's strain-rate
-    // velocities, whose corrections move no point.
+    // friction's share is dissipated; apply_constraints() counts it).
     double rigid_work = 0;
-    if (!for_strain_rate)
-      for (unsigned int r = 0; r < impulse.size(); ++r)
-        rigid_work += impulse[r] * contact->rigid_velocity_of(r);
-    loads.add_work(rigid_work);
+    for (unsigned int r = 0; r < impulse.size(); ++r)
+      rigid_work += impulse[r] * contact->rigid_velocity_of(r);
     // What the contact with rigid bodies took from the deformable fields
     // beyond what the rigid bodies did on them (external work) is its own:
     // the inelastic closing and the friction against them.
     if (account)
       work.contact += deformable_work - rigid_work;
+    return rigid_work;
   }
 
 

@@ -105,7 +105,9 @@ namespace mpm
     /// body has a field of its own; @p dt > 0 at the force update, where
     /// the rigid bodies' reactions are measured and where the fields press
     /// on each other is recorded for @p for_strain_rate (see there).
-    void
+    /// Returns the work the rigid bodies' reactions did at their
+    /// velocities (apply_constraints() counts it).
+    double
     apply_contact(const unsigned int slot,
                   const double       dt,
                   const bool         for_strain_rate);
